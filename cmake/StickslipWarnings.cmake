@@ -1,0 +1,25 @@
+# Flags for stickslip's own targets (tests, examples, benchmarks) only; never for consumers.
+add_library(stickslip_project_options INTERFACE)
+target_compile_options(stickslip_project_options INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+  $<$<BOOL:${STICKSLIP_WARNINGS_AS_ERRORS}>:-Werror>)
+if(STICKSLIP_SANITIZE)
+  target_compile_options(stickslip_project_options INTERFACE
+    -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(stickslip_project_options INTERFACE -fsanitize=address,undefined)
+endif()
+target_link_libraries(stickslip_project_options INTERFACE stickslip::stickslip)
+
+# stickslip_add_gtest(<name> LABEL <label> SOURCES <files...> [TIMEOUT s])
+# One GoogleTest executable whose tests CTest discovers, each carrying the component label.
+function(stickslip_add_gtest name)
+  cmake_parse_arguments(ARG "" "LABEL;TIMEOUT" "SOURCES" ${ARGN})
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  target_link_libraries(${name} PRIVATE stickslip_project_options GTest::gtest GTest::gtest_main)
+  gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} TIMEOUT ${ARG_TIMEOUT}
+                       DISCOVERY_TIMEOUT 60)
+endfunction()

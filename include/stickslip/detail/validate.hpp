@@ -1,0 +1,57 @@
+#pragma once
+/// \file validate.hpp
+/// \brief Argument checks shared by all components. Caller errors throw std::invalid_argument
+/// with a message that names the function/type, the parameter and the offending value.
+
+#include <cassert>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+/// Internal invariant check (not for caller errors, which throw). Active unless NDEBUG.
+#define STICKSLIP_ASSERT(cond) assert(cond)
+
+namespace stickslip {
+namespace detail {
+
+/// Format a value for an error message with enough digits to be unambiguous.
+template <class T>
+std::string format_value(const T& value) {
+  std::ostringstream os;
+  os.precision(17);
+  os << value;
+  return os.str();
+}
+
+/// Throw std::invalid_argument("<where>: <what> (got <value>)").
+template <class T>
+[[noreturn]] void throw_invalid(const std::string& where, const std::string& what, const T& value) {
+  throw std::invalid_argument(where + ": " + what + " (got " + format_value(value) + ")");
+}
+
+/// Require a finite value.
+template <class Scalar>
+void require_finite(const std::string& where, const char* name, Scalar value) {
+  using std::isfinite;
+  if (!isfinite(value)) throw_invalid(where, std::string(name) + " must be finite", value);
+}
+
+/// Require a finite, strictly positive value.
+template <class Scalar>
+void require_positive(const std::string& where, const char* name, Scalar value) {
+  using std::isfinite;
+  if (!(isfinite(value) && value > Scalar(0)))
+    throw_invalid(where, std::string(name) + " must be finite and > 0", value);
+}
+
+/// Require a finite, non-negative value.
+template <class Scalar>
+void require_non_negative(const std::string& where, const char* name, Scalar value) {
+  using std::isfinite;
+  if (!(isfinite(value) && value >= Scalar(0)))
+    throw_invalid(where, std::string(name) + " must be finite and >= 0", value);
+}
+
+}  // namespace detail
+}  // namespace stickslip
