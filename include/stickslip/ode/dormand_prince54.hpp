@@ -1,0 +1,95 @@
+#pragma once
+/// \file dormand_prince54.hpp
+/// \brief Adaptive explicit Runge-Kutta pair of Dormand and Prince, order 5(4), with its
+/// continuous extension of order 4.
+
+#include <stickslip/ode/detail/step_control.hpp>
+#include <stickslip/ode/hybrid_system.hpp>
+
+#include <Eigen/Core>
+
+namespace stickslip {
+
+/// Method tag: Dormand-Prince 5(4) (J. R. Dormand, P. J. Prince, J. Comput. Appl. Math. 6, 1980),
+/// local extrapolation (the order-5 solution is propagated), FSAL: six new right-hand-side
+/// evaluations per step. Error estimate of order 4 drives the step (exponent 1/5). Dense output:
+/// Hairer's order-4 continuous extension (local error O(h^5)), built only when an event or an
+/// output sample needs it. The default method: non-stiff problems, tight tolerances.
+struct DormandPrince54 {
+  static constexpr bool adaptive = true;
+  static constexpr int order = 5;
+  static constexpr int error_order = 4;  ///< the embedded estimate is O(h^5): exponent 1/5
+  static constexpr const char* name = "DormandPrince54";
+
+  /// Stage workspace and step of the method for one system type.
+  template <class System>
+  class Core {
+   public:
+    using Scalar = typename System::Scalar;
+    using State = typename System::State;
+    using Mode = typename System::Mode;
+
+    /// Size the workspace like `prototype` (allocates only for dynamic sizes, once).
+    void initialize(const State& prototype) {
+      for (State* v : {&k2_, &k3_, &k4_, &k5_, &k6_, &xs_, &r3_, &r5_}) v->resizeLike(prototype);
+    }
+    /// A new step start point (or a new mode) follows; nothing is cached across points.
+    void new_point() noexcept {}
+
+    /// One step of size h from (t, x0) with k1 = f0; writes x1 and f1 = f(t + h, x1) (= k7) and
+    /// returns the weighted RMS norm of the embedded error estimate.
+    Scalar step(System& sys, const Mode& m, Scalar t, const State& x0, const State& f0, Scalar h,
+                State& x1, State& f1, Scalar rtol, Scalar atol, StepperStats& stats) {
+      const auto c = [](double v) { return static_cast<Scalar>(v); };
+      xs_.noalias() = x0 + (h * c(1.0 / 5.0)) * f0;
+      sys.rhs(m, t + h * c(1.0 / 5.0), xs_, k2_);
+      xs_.noalias() = x0 + h * (c(3.0 / 40.0) * f0 + c(9.0 / 40.0) * k2_);
+      sys.rhs(m, t + h * c(3.0 / 10.0), xs_, k3_);
+      xs_.noalias() = x0 + h * (c(44.0 / 45.0) * f0 - c(56.0 / 15.0) * k2_ + c(32.0 / 9.0) * k3_);
+      sys.rhs(m, t + h * c(4.0 / 5.0), xs_, k4_);
+      xs_.noalias() = x0 + h * (c(19372.0 / 6561.0) * f0 - c(25360.0 / 2187.0) * k2_ +
+                                c(64448.0 / 6561.0) * k3_ - c(212.0 / 729.0) * k4_);
+      sys.rhs(m, t + h * c(8.0 / 9.0), xs_, k5_);
+      xs_.noalias() = x0 + h * (c(9017.0 / 3168.0) * f0 - c(355.0 / 33.0) * k2_ +
+                                c(46732.0 / 5247.0) * k3_ + c(49.0 / 176.0) * k4_ -
+                                c(5103.0 / 18656.0) * k5_);
+      sys.rhs(m, t + h, xs_, k6_);
+      x1.noalias() = x0 + h * (c(35.0 / 384.0) * f0 + c(500.0 / 1113.0) * k3_ +
+                               c(125.0 / 192.0) * k4_ - c(2187.0 / 6784.0) * k5_ +
+                               c(11.0 / 84.0) * k6_);
+      sys.rhs(m, t + h, x1, f1);
+      stats.rhs_evaluations += 6;
+      dense_ready_ = false;
+      return detail::weighted_rms(
+          h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3_ + c(71.0 / 1920.0) * k4_ -
+               c(17253.0 / 339200.0) * k5_ + c(22.0 / 525.0) * k6_ - c(1.0 / 40.0) * f1),
+          x0, x1, rtol, atol);
+    }
+
+    /// Continuous extension at t0 + theta h, theta in [0, 1] (Hairer & Wanner, dopri5 CONTD5):
+    /// x0 + theta (dx + (1-theta) (h f0 - dx + theta (dx - h f1 - (h f0 - dx) + (1-theta) r5))).
+    void dense(Scalar theta, Scalar h, const State& x0, const State& f0, const State& x1,
+               const State& f1, State& out) {
+      const auto c = [](double v) { return static_cast<Scalar>(v); };
+      if (!dense_ready_) {
+        r3_.noalias() = h * f0 - (x1 - x0);
+        r5_.noalias() = h * (c(-12715105075.0 / 11282082432.0) * f0 +
+                             c(87487479700.0 / 32700410799.0) * k3_ +
+                             c(-10690763975.0 / 1880347072.0) * k4_ +
+                             c(701980252875.0 / 199316789632.0) * k5_ +
+                             c(-1453857185.0 / 822651844.0) * k6_ +
+                             c(69997945.0 / 29380423.0) * f1);
+        dense_ready_ = true;
+      }
+      const Scalar s = Scalar(1) - theta;
+      out.noalias() = x0 + theta * ((x1 - x0) +
+                                    s * (r3_ + theta * ((x1 - x0) - h * f1 - r3_ + s * r5_)));
+    }
+
+   private:
+    State k2_, k3_, k4_, k5_, k6_, xs_, r3_, r5_;
+    bool dense_ready_ = false;
+  };
+};
+
+}  // namespace stickslip

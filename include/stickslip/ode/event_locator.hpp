@@ -1,0 +1,169 @@
+#pragma once
+/// \file event_locator.hpp
+/// \brief Guard arming and crossing detection, and the Illinois root finder used to place an
+/// event in time on a method's dense output.
+///
+/// Rule (see docs/ode.md, "Event semantics"): each guard g_i has a trigger level L_i and a sign
+/// s_i; it fires in a step when s_i (g_i - L_i) < 0 at the step end, having been >= 0 before.
+///  - Falling (s = +1), Rising (s = -1): *armed* (L = 0) when the mode starts with g strictly on
+///    the non-triggering side by more than the zero tolerance z. Otherwise it is *disarmed*: its
+///    level is moved just beyond the start value into the triggering direction
+///    (L = min(g0, 0) - z for Falling, max(g0, 0) + z for Rising), so it neither re-triggers on
+///    round-off nor stays blind; it is armed (L = 0) once it is more than z on the non-triggering
+///    side. A disarmed guard that fires is an *immediate* event (counted by the Zeno guard).
+///  - Either: armed with s = sign(g0) when |g0| > z; otherwise it cannot fire (s = 0) until
+///    |g| > z, then s = sign(g).
+
+#include <stickslip/ode/hybrid_system.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stickslip {
+namespace detail {
+
+/// Trigger levels, signs and arming of the guards of the current mode.
+template <class Scalar>
+class GuardMonitor {
+ public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// Set up for a mode with guard values g0 and their directions; z = zero tolerance.
+  /// `direction(i)` returns the CrossingDirection of guard i. Allocates only if size changes.
+  template <class DirectionFn>
+  void start_mode(const Vector& g0, DirectionFn&& direction, Scalar z) {
+    const Eigen::Index n = g0.size();
+    if (level_.size() != n) {
+      level_.resize(n);
+      sign_.resize(n);
+      armed_.resize(n);
+      dir_.resize(n);
+    }
+    z_ = z;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const CrossingDirection d = direction(i);
+      dir_[i] = static_cast<int>(d);
+      const Scalar g = g0[i];
+      level_[i] = Scalar(0);
+      armed_[i] = 1;
+      if (d == CrossingDirection::Falling) {
+        sign_[i] = Scalar(1);
+        if (!(g > z)) {
+          armed_[i] = 0;
+          level_[i] = std::min(g, Scalar(0)) - z;
+        }
+      } else if (d == CrossingDirection::Rising) {
+        sign_[i] = Scalar(-1);
+        if (!(g < -z)) {
+          armed_[i] = 0;
+          level_[i] = std::max(g, Scalar(0)) + z;
+        }
+      } else {
+        if (std::abs(g) > z) {
+          sign_[i] = g > 0 ? Scalar(1) : Scalar(-1);
+        } else {
+          sign_[i] = Scalar(0);
+          armed_[i] = 0;
+        }
+      }
+    }
+  }
+
+  /// Signed distance to the trigger: >= 0 before, < 0 once guard i has crossed.
+  Scalar distance(Eigen::Index i, Scalar g) const { return sign_[i] * (g - level_[i]); }
+
+  /// True when guard i has crossed at value g.
+  bool crossed(Eigen::Index i, Scalar g) const { return distance(i, g) < Scalar(0); }
+
+  /// True when any guard has crossed at values g.
+  bool any_crossed(const Vector& g) const {
+    for (Eigen::Index i = 0; i < g.size(); ++i)
+      if (crossed(i, g[i])) return true;
+    return false;
+  }
+
+  /// After an accepted step without event: arm the disarmed guards that left zero.
+  void update_arming(const Vector& g) {
+    for (Eigen::Index i = 0; i < g.size(); ++i) {
+      if (armed_[i]) continue;
+      const auto d = static_cast<CrossingDirection>(dir_[i]);
+      if (d == CrossingDirection::Falling && g[i] > z_) {
+        armed_[i] = 1;
+        level_[i] = Scalar(0);
+      } else if (d == CrossingDirection::Rising && g[i] < -z_) {
+        armed_[i] = 1;
+        level_[i] = Scalar(0);
+      } else if (d == CrossingDirection::Either && std::abs(g[i]) > z_) {
+        armed_[i] = 1;
+        sign_[i] = g[i] > 0 ? Scalar(1) : Scalar(-1);
+      }
+    }
+  }
+
+  /// True when guard i was disarmed (started the mode at zero): its event is immediate.
+  bool disarmed(Eigen::Index i) const { return armed_[i] == 0; }
+
+ private:
+  Vector level_, sign_;
+  Eigen::Array<int, Eigen::Dynamic, 1> armed_, dir_;
+  Scalar z_ = 0;
+};
+
+/// Final bracket [lo, hi] of a root: phi(lo) >= 0, phi(hi) < 0, hi - lo <= tolerance.
+template <class Scalar>
+struct RootBracket {
+  Scalar lo, hi;
+  int evaluations = 0;
+};
+
+/// Illinois (modified regula falsi) root finding of phi on [lo, hi] with phi(lo) >= 0 > phi(hi),
+/// until hi - lo <= tol. The trial point is kept tol/2 inside the bracket so that the bracket
+/// itself closes; a bisection step is taken when three iterations do not halve the bracket.
+template <class Scalar, class Phi>
+RootBracket<Scalar> illinois_root(Phi&& phi, Scalar lo, Scalar flo, Scalar hi, Scalar fhi,
+                                  Scalar tol) {
+  using std::abs;
+  const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+  tol = std::max(tol, Scalar(4) * eps * std::max(abs(lo), abs(hi)));
+  RootBracket<Scalar> r{lo, hi, 0};
+  int side = 0;
+  Scalar width_ref = hi - lo;
+  int since_halved = 0;
+  while (r.hi - r.lo > tol && r.evaluations < 400) {
+    Scalar c;
+    if (since_halved >= 3) {
+      c = r.lo + (r.hi - r.lo) / Scalar(2);
+    } else {
+      c = r.hi - fhi * (r.hi - r.lo) / (fhi - flo);
+      if (!(c > r.lo && c < r.hi)) c = r.lo + (r.hi - r.lo) / Scalar(2);
+      const Scalar margin = std::min(tol / Scalar(2), (r.hi - r.lo) / Scalar(4));
+      c = std::min(std::max(c, r.lo + margin), r.hi - margin);
+    }
+    const Scalar fc = phi(c);
+    ++r.evaluations;
+    if (fc < Scalar(0)) {
+      r.hi = c;
+      fhi = fc;
+      if (side == -1) flo /= Scalar(2);
+      side = -1;
+    } else {
+      r.lo = c;
+      flo = fc;
+      if (side == 1) fhi /= Scalar(2);
+      side = 1;
+    }
+    if (r.hi - r.lo <= width_ref / Scalar(2)) {
+      width_ref = r.hi - r.lo;
+      since_halved = 0;
+    } else {
+      ++since_halved;
+    }
+  }
+  return r;
+}
+
+}  // namespace detail
+}  // namespace stickslip

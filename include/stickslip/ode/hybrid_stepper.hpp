@@ -1,0 +1,427 @@
+#pragma once
+/// \file hybrid_stepper.hpp
+/// \brief HybridStepper: integrates a hybrid system (see hybrid_system.hpp) with one of the
+/// methods RungeKutta4, DormandPrince54, Rosenbrock23, locating guard crossings (events) by
+/// bisection or by root finding on the dense output, and applying the system's transitions.
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/step_control.hpp>
+#include <stickslip/ode/dormand_prince54.hpp>
+#include <stickslip/ode/event_locator.hpp>
+#include <stickslip/ode/hybrid_system.hpp>
+#include <stickslip/ode/stepper_options.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+namespace detail {
+template <class O, class Rec, class X, class = void>
+struct has_on_event_with_state : std::false_type {};
+template <class O, class Rec, class X>
+struct has_on_event_with_state<
+    O, Rec, X,
+    std::void_t<decltype(std::declval<O&>().on_event(std::declval<const Rec&>(),
+                                                     std::declval<const X&>()))>>
+    : std::true_type {};
+}  // namespace detail
+
+/// Integrator of a hybrid system with event location.
+///
+/// `System` models the hybrid system concept (`is_hybrid_system_v`); `Method` is one of the tags
+/// RungeKutta4, DormandPrince54 (default), Rosenbrock23. Usage:
+///
+///     HybridStepper<Ball, DormandPrince54> stepper(ball, options);
+///     auto result = stepper.integrate(mode, t0, x0, t_end, observer);
+///
+/// The run never throws for numerical outcomes: the Result carries the Status, the time, a
+/// message and the statistics. Throws std::invalid_argument for invalid options (constructor) or
+/// arguments (integrate: non-finite t0/t_end, t_end < t0, empty or non-finite x0).
+/// With a fixed-size State, a step (and an event, while the number of guards of the modes does
+/// not change) performs no heap allocation; workspace is sized at the start of integrate.
+template <class System, class Method = DormandPrince54>
+class HybridStepper {
+  static_assert(is_hybrid_system_v<System>,
+                "HybridStepper: System needs Scalar, State, Mode, rhs(mode, t, x, dxdt), "
+                "num_guards(mode), guards(mode, t, x, g), guard_direction(mode, i) and "
+                "transition(mode, triggered, t, x); see docs/ode.md");
+
+ public:
+  using Scalar = typename System::Scalar;
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  using Result = HybridResult<Scalar, State, Mode>;
+  using Options = StepperOptions<Scalar>;
+  using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Core = typename Method::template Core<System>;
+
+  /// Keeps a reference to `system` (it must outlive the stepper). Throws std::invalid_argument
+  /// ("HybridStepper: options.<name> ...") for options out of range.
+  explicit HybridStepper(System& system, StepperOptions<Scalar> options = {})
+      : sys_(system), opt_(options) {
+    opt_.validate("HybridStepper");
+  }
+
+  /// Integrate from (mode, t0, x0) to t_end >= t0, calling observer.on_step after each accepted
+  /// step, observer.on_event after each transition (or on_event(record, x_after) when the
+  /// observer has it), observer.on_sample at the output times. See docs/ode.md.
+  template <class Observer>
+  Result integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end, Observer& observer);
+
+  /// Integrate without observer.
+  Result integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end) {
+    NullObserver none;
+    return integrate(std::move(mode), t0, x0, t_end, none);
+  }
+
+  /// The options in use.
+  const StepperOptions<Scalar>& options() const { return opt_; }
+
+ private:
+  static constexpr bool adaptive_ = Method::adaptive;
+
+  bool finite(const State& v) const { return v.allFinite(); }
+
+  bool eval_rhs(const Mode& m, Scalar t, const State& x, State& f, StepperStats& st) {
+    sys_.rhs(m, t, x, f);
+    ++st.rhs_evaluations;
+    return f.allFinite();
+  }
+
+  void eval_guards(const Mode& m, Scalar t, const State& x, GuardVector& g, StepperStats& st) {
+    if (g.size() == 0) return;
+    sys_.guards(m, t, x, g);
+    ++st.guard_evaluations;
+  }
+
+  // f and guards at the start of a mode (run start or after a transition); false when f or g is
+  // not finite.
+  bool start_mode(const Mode& m, Scalar t, StepperStats& st) {
+    core_.new_point();
+    if (!eval_rhs(m, t, x_, f_, st)) return false;
+    const Eigen::Index ng = sys_.num_guards(m);
+    if (ga_.size() != ng) {
+      ga_.resize(ng);
+      gb_.resize(ng);
+      gt_.resize(ng);
+      roots_.resize(ng);
+    }
+    eval_guards(m, t, x_, ga_, st);
+    if (!ga_.allFinite()) return false;
+    monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
+                        opt_.guard_zero_tolerance);
+    return true;
+  }
+
+  Scalar initial_step(const Mode& m, Scalar t, Scalar hmax, StepperStats& st);
+
+  // Locate the earliest crossing in the accepted trial step [t, t1]; on return xe_, fe_ hold the
+  // state and f at the event time (returned), triggered_ the guards, and the core's dense output
+  // covers [t, t_event].
+  Scalar locate_event(const Mode& m, Scalar t, Scalar h, Scalar t1, StepperStats& st);
+
+  template <class Observer>
+  bool emit_samples(Observer& obs, const Mode& m, Scalar a, Scalar h, Scalar upto,
+                    const State& xa, const State& fa, const State& xb, const State& fb);
+
+  static Result finish(Result& r, Status s, Scalar t, const State& x, const Mode& m,
+                       std::string message) {
+    r.status = s;
+    r.t = t;
+    r.x = x;
+    r.mode = m;
+    r.message = std::move(message);
+    return std::move(r);
+  }
+
+  System& sys_;
+  Options opt_;
+  Core core_;
+  detail::GuardMonitor<Scalar> monitor_;
+  State x_, f_, x1_, f1_, xe_, fe_, xs_;
+  GuardVector ga_, gb_, gt_, roots_;
+  TriggeredGuards triggered_;
+  std::vector<Scalar> event_ring_;
+  Scalar t0_ = 0;
+  long next_sample_ = 0;
+};
+
+template <class System, class Method>
+auto HybridStepper<System, Method>::initial_step(const Mode& m, Scalar t, Scalar hmax,
+                                                 StepperStats& st) -> Scalar {
+  // Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4 "Starting step size".
+  using std::pow;
+  if (opt_.initial_step > 0) return std::min(opt_.initial_step, hmax);
+  const auto scale = opt_.atol + opt_.rtol * x_.array().abs();
+  const Scalar n = static_cast<Scalar>(x_.size());
+  const Scalar d0 = std::sqrt((x_.array() / scale).square().sum() / n);
+  const Scalar d1 = std::sqrt((f_.array() / scale).square().sum() / n);
+  Scalar h0 = (d0 < Scalar(1e-5) || d1 < Scalar(1e-5)) ? Scalar(1e-6) : Scalar(0.01) * d0 / d1;
+  h0 = std::min(h0, hmax);
+  x1_.noalias() = x_ + h0 * f_;
+  if (!eval_rhs(m, t + h0, x1_, f1_, st)) return h0;
+  const Scalar d2 = std::sqrt(((f1_ - f_).array() / scale).square().sum() / n) / h0;
+  const Scalar dm = std::max(d1, d2);
+  const Scalar h1 = dm <= Scalar(1e-15)
+                        ? std::max(Scalar(1e-6), h0 * Scalar(1e-3))
+                        : pow(Scalar(0.01) / dm, Scalar(1) / Scalar(Method::order + 1));
+  return std::min({Scalar(100) * h0, h1, hmax});
+}
+
+template <class System, class Method>
+auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar h, Scalar t1,
+                                                 StepperStats& st) -> Scalar {
+  const Scalar tol = opt_.event_time_tolerance;
+  const Eigen::Index ng = gb_.size();
+  triggered_.clear();
+  if (opt_.event_location == EventLocation::Bisection) {
+    // The paper's way: halve [lo, hi], re-integrating one step from t to the midpoint.
+    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    const Scalar tol_eff = std::max(tol, Scalar(4) * eps * std::max(std::abs(t), std::abs(t1)));
+    Scalar lo = t, hi = t1;
+    bool core_at_hi = true;  // the core's stages belong to the step [t, hi]
+    xe_ = x1_;
+    fe_ = f1_;
+    while (hi - lo > tol_eff) {
+      const Scalar mid = lo + (hi - lo) / Scalar(2);
+      core_.step(sys_, m, t, x_, f_, mid - t, xs_, f1_, opt_.rtol, opt_.atol, st);
+      eval_guards(m, mid, xs_, gt_, st);
+      if (monitor_.any_crossed(gt_)) {
+        hi = mid;
+        xe_ = xs_;
+        fe_ = f1_;
+        gb_ = gt_;
+        core_at_hi = true;
+      } else {
+        lo = mid;
+        core_at_hi = false;
+      }
+    }
+    if (!core_at_hi) core_.step(sys_, m, t, x_, f_, hi - t, xe_, fe_, opt_.rtol, opt_.atol, st);
+    for (Eigen::Index i = 0; i < ng; ++i)
+      if (monitor_.crossed(i, gb_[i])) triggered_.push_back(i);
+    return hi;
+  }
+
+  // Root finding on the dense output, guard by guard; the earliest crossing wins.
+  Scalar first = t1;
+  for (Eigen::Index i = 0; i < ng; ++i) {
+    roots_[i] = std::numeric_limits<Scalar>::infinity();
+    if (!monitor_.crossed(i, gb_[i])) continue;
+    auto phi = [&](Scalar tc) {
+      core_.dense((tc - t) / h, h, x_, f_, x1_, f1_, xs_);
+      eval_guards(m, tc, xs_, gt_, st);
+      return monitor_.distance(i, gt_[i]);
+    };
+    const auto br = detail::illinois_root(phi, t, monitor_.distance(i, ga_[i]), t1,
+                                          monitor_.distance(i, gb_[i]), tol);
+    roots_[i] = br.hi;
+    first = std::min(first, br.hi);
+  }
+  for (Eigen::Index i = 0; i < ng; ++i)
+    if (roots_[i] <= first + tol) triggered_.push_back(i);
+  if (first >= t1) {
+    xe_ = x1_;
+    fe_ = f1_;
+    return t1;
+  }
+  // Re-integrate [t, first] with the method itself: full order at the event, and the core's
+  // dense output then covers [t, first].
+  core_.step(sys_, m, t, x_, f_, first - t, xe_, fe_, opt_.rtol, opt_.atol, st);
+  return first;
+}
+
+template <class System, class Method>
+template <class Observer>
+bool HybridStepper<System, Method>::emit_samples(Observer& obs, const Mode& m, Scalar a, Scalar h,
+                                                 Scalar upto, const State& xa, const State& fa,
+                                                 const State& xb, const State& fb) {
+  if (!(opt_.output_interval > 0)) return true;
+  for (;;) {
+    const Scalar ts = t0_ + static_cast<Scalar>(next_sample_) * opt_.output_interval;
+    if (ts > upto) return true;
+    ++next_sample_;
+    if (ts < a) continue;
+    const Scalar theta = h > 0 ? (ts - a) / h : Scalar(1);
+    if (theta >= Scalar(1)) {
+      xs_ = xb;
+    } else {
+      core_.dense(theta, h, xa, fa, xb, fb, xs_);
+    }
+    if (!obs.on_sample(ts, xs_, m)) return false;
+  }
+}
+
+template <class System, class Method>
+template <class Observer>
+auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,
+                                              Observer& obs) -> Result {
+  static const std::string where = "HybridStepper::integrate";
+  detail::require_finite(where, "t0", t0);
+  detail::require_finite(where, "t_end", t_end);
+  if (!(t_end >= t0)) detail::throw_invalid(where, "t_end must be >= t0", t_end);
+  if (x0.size() == 0) detail::throw_invalid(where, "x0 must not be empty", x0.size());
+  if (!x0.allFinite()) detail::throw_invalid(where, "x0 must be finite", x0.transpose());
+
+  Result r;
+  StepperStats& st = r.stats;
+  x_ = x0;
+  for (State* v : {&f_, &x1_, &f1_, &xe_, &fe_, &xs_}) v->resizeLike(x0);
+  core_.initialize(x0);
+  triggered_.clear();
+  triggered_.reserve(static_cast<std::size_t>(std::max<Eigen::Index>(sys_.num_guards(mode), 8)));
+  const bool rate_cap = opt_.zeno_window > 0;
+  event_ring_.assign(rate_cap ? static_cast<std::size_t>(opt_.zeno_max_events) + 1 : 0,
+                     Scalar(0));
+  std::size_t ring_pos = 0;
+  long immediate_run = 0;
+  t0_ = t0;
+  next_sample_ = 0;
+
+  Scalar t = t0;
+  if (!start_mode(mode, t, st))
+    return finish(r, Status::NonFiniteState, t, x_, mode,
+                  "right-hand side or guards not finite " + detail::at_time(t));
+  if (!emit_samples(obs, mode, t, Scalar(0), t, x_, f_, x_, f_))
+    return finish(r, Status::StoppedByObserver, t, x_, mode,
+                  "stopped by observer " + detail::at_time(t));
+
+  const Scalar hmax = adaptive_ ? opt_.max_step : opt_.fixed_step;
+  Scalar h = adaptive_ ? initial_step(mode, t, std::min(hmax, t_end - t), st) : opt_.fixed_step;
+  bool after_reject = false;  // no step growth right after a rejection
+  bool nan_recovery = false;  // RK4: keep the reduced step after a non-finite trial step
+  long attempts = 0;
+  using std::pow;
+
+  while (t < t_end) {
+    if (attempts >= opt_.max_steps)
+      return finish(r, Status::MaxSteps, t, x_, mode,
+                    "max_steps " + std::to_string(opt_.max_steps) + " reached " +
+                        detail::at_time(t));
+    h = std::min(h, hmax);
+    Scalar t1 = t + h;
+    if (t_end - t1 <= Scalar(0.01) * h) {
+      t1 = t_end;
+      h = t_end - t;
+    }
+    const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t));
+    ++attempts;
+    const Scalar err = core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
+    bool ok = std::isfinite(err) && x1_.allFinite() && f1_.allFinite();
+    if (ok) {
+      eval_guards(mode, t1, x1_, gb_, st);
+      ok = gb_.allFinite();
+    }
+    if (!ok) {
+      // Shrink towards the first non-finite point; report it once the step is below min_step.
+      ++st.rejected_steps;
+      h /= Scalar(2);
+      after_reject = true;
+      nan_recovery = true;
+      if (h < hmin)
+        return finish(r, Status::NonFiniteState, t, x_, mode,
+                      "right-hand side, state or guards became non-finite " +
+                          detail::at_time(t) + " (a step of " +
+                          detail::short_number(h * Scalar(2)) + " already fails)");
+      continue;
+    }
+    if (adaptive_ && err > Scalar(1)) {
+      ++st.rejected_steps;
+      h *= std::max(Scalar(0.2),
+                    opt_.safety * pow(err, Scalar(-1) / Scalar(Method::error_order + 1)));
+      after_reject = true;
+      if (h < hmin)
+        return finish(r, Status::StepSizeUnderflow, t, x_, mode,
+                      "step size " + detail::short_number(h) + " fell below min_step " +
+                          detail::short_number(hmin) + " " + detail::at_time(t));
+      continue;
+    }
+    ++st.accepted_steps;
+
+    if (monitor_.any_crossed(gb_)) {
+      const Scalar te = locate_event(mode, t, h, t1, st);
+      if (!emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_))
+        return finish(r, Status::StoppedByObserver, te, xe_, mode,
+                      "stopped by observer " + detail::at_time(te));
+      if (!obs.on_step(te, xe_, mode))
+        return finish(r, Status::StoppedByObserver, te, xe_, mode,
+                      "stopped by observer " + detail::at_time(te));
+      bool immediate = false;
+      for (Eigen::Index i : triggered_) immediate = immediate || monitor_.disarmed(i);
+      t = te;
+      x_.swap(xe_);
+      const Mode from = mode;
+      TransitionAction action = sys_.transition(mode, triggered_, t, x_);
+      ++st.events;
+      const EventRecord<Scalar, Mode> record{t, from, mode, &triggered_};
+      if constexpr (detail::has_on_event_with_state<Observer, EventRecord<Scalar, Mode>,
+                                                    State>::value) {
+        obs.on_event(record, x_);
+      } else {
+        obs.on_event(record);
+      }
+      if (action.stop)
+        return finish(r, Status::StoppedBySystem, t, x_, mode,
+                      "stopped by system " + detail::at_time(t) + ": " + action.reason);
+      immediate_run = immediate ? immediate_run + 1 : 0;
+      if (immediate_run > opt_.zeno_max_immediate_events)
+        return finish(r, Status::ZenoGuard, t, x_, mode,
+                      "Zeno guard: " + std::to_string(immediate_run) +
+                          " consecutive immediate events (a guard leaving zero straight into "
+                          "its triggering direction) " +
+                          detail::at_time(t));
+      if (rate_cap) {
+        event_ring_[ring_pos] = t;
+        ring_pos = (ring_pos + 1) % event_ring_.size();
+        if (st.events > opt_.zeno_max_events && t - event_ring_[ring_pos] <= opt_.zeno_window)
+          return finish(r, Status::ZenoGuard, t, x_, mode,
+                        "Zeno guard: more than " + std::to_string(opt_.zeno_max_events) +
+                            " events within " + detail::short_number(opt_.zeno_window) + " " +
+                            detail::at_time(t));
+      }
+      if (!start_mode(mode, t, st))
+        return finish(r, Status::NonFiniteState, t, x_, mode,
+                      "right-hand side or guards not finite after the transition " +
+                          detail::at_time(t));
+      if (!adaptive_) {
+        h = opt_.fixed_step;
+        nan_recovery = false;
+      }
+      continue;
+    }
+
+    if (!emit_samples(obs, mode, t, h, t1, x_, f_, x1_, f1_))
+      return finish(r, Status::StoppedByObserver, t1, x1_, mode,
+                    "stopped by observer " + detail::at_time(t1));
+    t = t1;
+    x_.swap(x1_);
+    f_.swap(f1_);
+    ga_.swap(gb_);
+    monitor_.update_arming(ga_);
+    core_.new_point();
+    if (!obs.on_step(t, x_, mode))
+      return finish(r, Status::StoppedByObserver, t, x_, mode,
+                    "stopped by observer " + detail::at_time(t));
+    if (adaptive_) {
+      Scalar fac = err > 0 ? opt_.safety * pow(err, Scalar(-1) / Scalar(Method::error_order + 1))
+                           : Scalar(5);
+      fac = std::min(Scalar(5), std::max(Scalar(0.2), fac));
+      if (after_reject) fac = std::min(fac, Scalar(1));
+      h *= fac;
+    } else if (!nan_recovery) {
+      h = opt_.fixed_step;
+    }
+    after_reject = false;
+  }
+  return finish(r, Status::Success, t, x_, mode, std::string());
+}
+
+}  // namespace stickslip

@@ -1,0 +1,69 @@
+#pragma once
+// Small hybrid systems with closed-form solutions, shared by the ode tests.
+
+#include <stickslip/ode/hybrid_system.hpp>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+
+namespace stickslip::test {
+
+/// Ball over a floor: y' = v, v' = -g; guard y (Falling); impact v -> -e v.
+/// Dropped from rest at height h0 at t = 0: impacts at t_1 = sqrt(2 h0 / g) and
+/// t_{k+1} = t_k + 2 e^k v_1 / g with v_1 = g t_1.
+struct BouncingBall {
+  using Scalar = double;
+  using State = Eigen::Vector2d;
+  using Mode = int;
+  double gravity = 9.81;
+  double restitution = 0.8;
+  void rhs(const Mode&, double, const State& x, State& dxdt) const { dxdt << x[1], -gravity; }
+  Eigen::Index num_guards(const Mode&) const { return 1; }
+  void guards(const Mode&, double, const State& x, Eigen::VectorXd& g) const { g[0] = x[0]; }
+  CrossingDirection guard_direction(const Mode&, Eigen::Index) const {
+    return CrossingDirection::Falling;
+  }
+  TransitionAction transition(Mode& m, const TriggeredGuards&, double, State& x) const {
+    x[1] = -restitution * x[1];
+    ++m;  // the mode counts the bounces
+    return TransitionAction::proceed();
+  }
+  /// Closed-form time of impact k (1-based) when dropped from rest at height h0 at t = 0.
+  double impact_time(int k, double h0) const {
+    const double t1 = std::sqrt(2.0 * h0 / gravity);
+    const double v1 = gravity * t1;
+    double t = t1;
+    for (int j = 1; j < k; ++j) t += 2.0 * std::pow(restitution, j) * v1 / gravity;
+    return t;
+  }
+};
+
+}  // namespace stickslip::test
+
+namespace stickslip::test {
+
+/// Harmonic oscillator x'' = -omega^2 x from x(0) = 1, x'(0) = 0: x = cos(omega t). Guard x with a
+/// chosen direction; the transition only counts. Zeros at t_k = (k - 1/2) pi / omega.
+struct Oscillator {
+  using Scalar = double;
+  using State = Eigen::Vector2d;
+  using Mode = int;
+  double omega = 3.0;
+  CrossingDirection direction = CrossingDirection::Either;
+  double nan_after = std::numeric_limits<double>::infinity();  ///< rhs returns NaN for t > this
+  void rhs(const Mode&, double t, const State& x, State& dxdt) const {
+    dxdt << x[1], -omega * omega * x[0];
+    if (t > nan_after) dxdt[1] = std::numeric_limits<double>::quiet_NaN();
+  }
+  Eigen::Index num_guards(const Mode&) const { return 1; }
+  void guards(const Mode&, double, const State& x, Eigen::VectorXd& g) const { g[0] = x[0]; }
+  CrossingDirection guard_direction(const Mode&, Eigen::Index) const { return direction; }
+  TransitionAction transition(Mode& m, const TriggeredGuards&, double, State&) const {
+    ++m;
+    return TransitionAction::proceed();
+  }
+};
+
+}  // namespace stickslip::test
