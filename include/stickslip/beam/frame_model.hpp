@@ -1,0 +1,345 @@
+#pragma once
+/// \file frame_model.hpp
+/// \brief A plane frame of rigidly joined Euler-Bernoulli members: nodes, members, supports,
+/// point masses and springs, and the assembly of K and M.
+
+#include "stickslip/beam/assembled_frame.hpp"
+#include "stickslip/beam/dof.hpp"
+#include "stickslip/beam/dof_map.hpp"
+#include "stickslip/beam/frame_element.hpp"
+#include "stickslip/beam/frame_member.hpp"
+#include "stickslip/beam/mass_type.hpp"
+#include "stickslip/beam/section_properties.hpp"
+#include "stickslip/detail/validate.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+namespace detail {
+/// Process-unique, never-repeating model identifiers (0 is never issued).
+inline std::uint64_t next_model_id() noexcept {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+}  // namespace detail
+
+/// A plane frame (paper Fig. 3: the blade and the platform as two rigidly connected beams).
+///
+/// Nodes carry 3 DOFs (X, Y, Rz); node i owns global DOFs 3i..3i+2. Members sharing a node are
+/// rigidly joined (all three DOFs shared). Every mutation gives the model a fresh id(), so a
+/// ModalBasis (which stores the id at assembly) can be checked against the model it came from;
+/// copies keep the id of their source until changed.
+template <class Scalar_>
+class FrameModel {
+ public:
+  using Scalar = Scalar_;
+  using Index = Eigen::Index;
+  using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
+  using Section = SectionProperties<Scalar>;
+  using Member = FrameMember<Scalar>;
+
+  /// Relative tolerance (of the model's bounding-box diagonal) below which two user nodes are
+  /// coincident, and of the member length for the end stations of explicit meshes.
+  static constexpr double coincidence_tolerance = 1e-9;
+
+  FrameModel() = default;
+
+  /// Add a node at (x, y) [m]; returns its id.
+  /// \throws std::invalid_argument for non-finite coordinates, or when the node lies within
+  ///         coincidence_tolerance * (bounding-box diagonal) of an existing node (the message
+  ///         names that node). Cost O(num_nodes()).
+  Index add_node(Scalar x, Scalar y) {
+    static const char* where = "FrameModel::add_node";
+    detail::require_finite(where, "x", x);
+    detail::require_finite(where, "y", y);
+    const Vector2 p(x, y);
+    Vector2 lo = p, hi = p;
+    for (const Vector2& q : positions_) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const Scalar tol = Scalar(coincidence_tolerance) * (hi - lo).norm();
+    for (std::size_t n = 0; n < positions_.size(); ++n) {
+      if ((positions_[n] - p).norm() <= tol)
+        throw std::invalid_argument(std::string(where) + ": node at (" + detail::format_value(x) +
+                                    ", " + detail::format_value(y) + ") coincides with node " +
+                                    std::to_string(n) + " (relative tolerance " +
+                                    detail::format_value(coincidence_tolerance) +
+                                    " of the model size)");
+    }
+    return push_node(p);
+  }
+
+  /// Add a member from node_a to node_b discretised into `elements` equal elements (creates
+  /// elements - 1 interior nodes); returns the member id.
+  /// \throws std::invalid_argument for a missing node, node_a == node_b, elements < 1 or an
+  ///         invalid section
+  Index add_member(Index node_a, Index node_b, const Section& section, Index elements) {
+    static const char* where = "FrameModel::add_member";
+    if (elements < 1) detail::throw_invalid(where, "elements must be >= 1", elements);
+    const Scalar length = checked_length(where, node_a, node_b, section);
+    std::vector<Scalar> stations(static_cast<std::size_t>(elements) + 1);
+    for (Index e = 0; e <= elements; ++e)
+      stations[static_cast<std::size_t>(e)] = length * Scalar(e) / Scalar(elements);
+    stations.back() = length;
+    return push_member(node_a, node_b, section, length, std::move(stations));
+  }
+
+  /// Add a member with an explicit (e.g. graded) mesh: `stations` are the ascending local
+  /// coordinates [m] of the node chain, stations.front() = 0 and stations.back() = member
+  /// length (each within coincidence_tolerance * length; they are then set exactly).
+  /// \throws std::invalid_argument for a missing node, node_a == node_b, fewer than two stations,
+  ///         non-ascending or non-finite stations, wrong end stations, or an invalid section
+  Index add_member(Index node_a, Index node_b, const Section& section, std::vector<Scalar> stations) {
+    static const char* where = "FrameModel::add_member";
+    const Scalar length = checked_length(where, node_a, node_b, section);
+    if (stations.size() < 2) detail::throw_invalid(where, "stations.size() must be >= 2", stations.size());
+    using std::abs;
+    const Scalar tol = Scalar(coincidence_tolerance) * length;
+    if (!(abs(stations.front()) <= tol))
+      detail::throw_invalid(where, "stations.front() must be 0", stations.front());
+    if (!(abs(stations.back() - length) <= tol))
+      detail::throw_invalid(where, "stations.back() must equal the member length " +
+                                       detail::format_value(length), stations.back());
+    stations.front() = Scalar(0);
+    stations.back() = length;
+    for (std::size_t i = 1; i < stations.size(); ++i) {
+      if (!(stations[i] > stations[i - 1]))
+        detail::throw_invalid(where, "stations must be finite and strictly ascending; stations[" +
+                                         std::to_string(i) + "]", stations[i]);
+    }
+    return push_member(node_a, node_b, section, length, std::move(stations));
+  }
+
+  /// Fix all three DOFs of a node (clamped support). \throws std::invalid_argument if missing
+  void clamp(Index node) {
+    check_node("FrameModel::clamp", "node", node);
+    for (Dof d : {Dof::X, Dof::Y, Dof::Rz}) constrain(node, d);
+  }
+
+  /// Fix X and Y of a node (pinned support). \throws std::invalid_argument if missing
+  void pin(Index node) {
+    check_node("FrameModel::pin", "node", node);
+    constrain(node, Dof::X);
+    constrain(node, Dof::Y);
+  }
+
+  /// Fix one DOF of a node (e.g. a roller). \throws std::invalid_argument if missing
+  void fix(Index node, Dof dof) {
+    check_node("FrameModel::fix", "node", node);
+    constrain(node, dof);
+  }
+
+  /// Add a point mass m [kg] on the X and Y DOFs of a node (accumulates).
+  /// \throws std::invalid_argument for a missing node or m non-finite or < 0
+  void add_point_mass(Index node, Scalar m) {
+    static const char* where = "FrameModel::add_point_mass";
+    check_node(where, "node", node);
+    detail::require_non_negative(where, "m", m);
+    nodal_mass_[idx(global_dof(node, Dof::X))] += m;
+    nodal_mass_[idx(global_dof(node, Dof::Y))] += m;
+    touch();
+  }
+
+  /// Add a rotary inertia J [kg m^2] on the Rz DOF of a node (accumulates).
+  /// \throws std::invalid_argument for a missing node or J non-finite or < 0
+  void add_rotary_inertia(Index node, Scalar J) {
+    static const char* where = "FrameModel::add_rotary_inertia";
+    check_node(where, "node", node);
+    detail::require_non_negative(where, "J", J);
+    nodal_mass_[idx(global_dof(node, Dof::Rz))] += J;
+    touch();
+  }
+
+  /// Add a grounded spring k [N/m, or N m/rad for Rz] on one DOF of a node (accumulates).
+  /// \throws std::invalid_argument for a missing node or k non-finite or < 0
+  void add_spring(Index node, Dof dof, Scalar k) {
+    static const char* where = "FrameModel::add_spring";
+    check_node(where, "node", node);
+    detail::require_non_negative(where, "k", k);
+    nodal_spring_[idx(global_dof(node, dof))] += k;
+    touch();
+  }
+
+  /// Member `id`. \throws std::invalid_argument when out of range
+  const Member& member(Index id) const {
+    if (id < 0 || id >= num_members())
+      throw std::invalid_argument("FrameModel::member: id = " + std::to_string(id) +
+                                  " does not exist (model has " + std::to_string(num_members()) +
+                                  " members)");
+    return members_[idx(id)];
+  }
+
+  Index num_members() const noexcept { return static_cast<Index>(members_.size()); }
+  Index num_nodes() const noexcept { return static_cast<Index>(positions_.size()); }
+  Index num_elements() const noexcept { return num_elements_; }
+
+  /// Position (X, Y) [m] of a node. \throws std::invalid_argument when missing
+  Vector2 node_position(Index node) const {
+    check_node("FrameModel::node_position", "node", node);
+    return positions_[idx(node)];
+  }
+
+  /// True when the nodal DOF is constrained. \throws std::invalid_argument when missing
+  bool is_constrained(Index node, Dof dof) const {
+    check_node("FrameModel::is_constrained", "node", node);
+    return constrained_[idx(global_dof(node, dof))];
+  }
+
+  /// Identifier of this model's current content (changes with every mutation, unique in the
+  /// process); copied into AssembledFrame::model_id and ModalBasis::model_id().
+  std::uint64_t id() const noexcept { return id_; }
+
+  /// Assemble K and M over the free DOFs (constrained DOFs eliminated), element matrices from
+  /// FrameElement::global_stiffness / global_mass(type), plus point masses, rotary inertias and
+  /// springs on the diagonal. Cost O(num_elements()).
+  /// \throws std::invalid_argument when there are no free DOFs, or a free DOF has no mass (a
+  ///         node not attached to any member and carrying no point mass / rotary inertia)
+  AssembledFrame<Scalar> assemble(MassType type = MassType::Consistent) const {
+    static const char* where = "FrameModel::assemble";
+    AssembledFrame<Scalar> out;
+    out.dofs = DofMap(constrained_);
+    out.model_id = id_;
+    out.mass_type = type;
+    const Index n = out.dofs.num_free();
+    if (n == 0)
+      throw std::invalid_argument(std::string(where) + ": the model has no free DOFs (" +
+                                  std::to_string(num_nodes()) + " nodes, all DOFs constrained)");
+
+    using Triplet = Eigen::Triplet<Scalar, typename AssembledFrame<Scalar>::SparseMatrix::StorageIndex>;
+    using StorageIndex = typename AssembledFrame<Scalar>::SparseMatrix::StorageIndex;
+    std::vector<Triplet> k_triplets, m_triplets;
+    k_triplets.reserve(static_cast<std::size_t>(36 * num_elements_ + 3 * num_nodes()));
+    m_triplets.reserve(static_cast<std::size_t>((type == MassType::Consistent ? 36 : 6) * num_elements_ +
+                                                3 * num_nodes()));
+    std::array<Index, 6> map{};
+    for (const Member& member : members_) {
+      for (Index e = 0; e < member.num_elements(); ++e) {
+        const auto a = member.nodes[idx(e)], b = member.nodes[idx(e + 1)];
+        for (Index j = 0; j < 3; ++j) {
+          map[idx(j)] = out.dofs.free_index(a, static_cast<Dof>(j));
+          map[idx(j + 3)] = out.dofs.free_index(b, static_cast<Dof>(j));
+        }
+        const FrameElement<Scalar> element = member.element(e);
+        const auto k = element.global_stiffness();
+        const auto m = element.global_mass(type);
+        for (Index c = 0; c < 6; ++c) {
+          const Index fc = map[idx(c)];
+          if (fc < 0) continue;
+          for (Index r = 0; r < 6; ++r) {
+            const Index fr = map[idx(r)];
+            if (fr < 0) continue;
+            const auto sr = static_cast<StorageIndex>(fr), sc = static_cast<StorageIndex>(fc);
+            k_triplets.emplace_back(sr, sc, k(r, c));
+            if (type == MassType::Consistent || r == c) m_triplets.emplace_back(sr, sc, m(r, c));
+          }
+        }
+      }
+    }
+    for (Index i = 0; i < n; ++i) {
+      const Index g = out.dofs.global_index(i);
+      const auto si = static_cast<StorageIndex>(i);
+      if (nodal_spring_[idx(g)] != Scalar(0)) k_triplets.emplace_back(si, si, nodal_spring_[idx(g)]);
+      if (nodal_mass_[idx(g)] != Scalar(0)) m_triplets.emplace_back(si, si, nodal_mass_[idx(g)]);
+    }
+    out.stiffness.resize(n, n);
+    out.mass.resize(n, n);
+    out.stiffness.setFromTriplets(k_triplets.begin(), k_triplets.end());
+    out.mass.setFromTriplets(m_triplets.begin(), m_triplets.end());
+    out.stiffness.makeCompressed();
+    out.mass.makeCompressed();
+
+    const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> diag = out.mass.diagonal();
+    for (Index i = 0; i < n; ++i) {
+      if (!(diag(i) > Scalar(0))) {
+        const auto nd = out.dofs.node_dof(i);
+        throw std::invalid_argument(std::string(where) + ": DOF " + to_string(nd.second) +
+                                    " of node " + std::to_string(nd.first) +
+                                    " is free but has no mass (node not attached to a member "
+                                    "and without point mass / rotary inertia; constrain it)");
+      }
+    }
+    return out;
+  }
+
+ private:
+  static std::size_t idx(Index i) noexcept { return static_cast<std::size_t>(i); }
+
+  void touch() noexcept { id_ = detail::next_model_id(); }
+
+  Index push_node(const Vector2& p) {
+    positions_.push_back(p);
+    for (int d = 0; d < 3; ++d) {
+      constrained_.push_back(false);
+      nodal_mass_.push_back(Scalar(0));
+      nodal_spring_.push_back(Scalar(0));
+    }
+    touch();
+    return num_nodes() - 1;
+  }
+
+  void check_node(const char* where, const char* name, Index node) const {
+    if (node < 0 || node >= num_nodes())
+      throw std::invalid_argument(std::string(where) + ": " + name + " = " + std::to_string(node) +
+                                  " does not exist (model has " + std::to_string(num_nodes()) +
+                                  " nodes)");
+  }
+
+  Scalar checked_length(const char* where, Index node_a, Index node_b, const Section& section) const {
+    check_node(where, "node_a", node_a);
+    check_node(where, "node_b", node_b);
+    if (node_a == node_b)
+      detail::throw_invalid(where, "node_b must differ from node_a (zero-length member)", node_b);
+    section.validate(where);
+    const Scalar length = (positions_[idx(node_b)] - positions_[idx(node_a)]).norm();
+    detail::require_positive(where, "member length", length);
+    return length;
+  }
+
+  Index push_member(Index node_a, Index node_b, const Section& section, Scalar length,
+                    std::vector<Scalar> stations) {
+    Member m;
+    const Vector2 pa = positions_[idx(node_a)];
+    const Vector2 axis = (positions_[idx(node_b)] - pa) / length;
+    m.length = length;
+    m.cos = axis.x();
+    m.sin = axis.y();
+    m.section = section;
+    m.nodes.reserve(stations.size());
+    m.nodes.push_back(node_a);
+    for (std::size_t i = 1; i + 1 < stations.size(); ++i) m.nodes.push_back(push_node(pa + stations[i] * axis));
+    m.nodes.push_back(node_b);
+    m.stations = std::move(stations);
+    num_elements_ += m.num_elements();
+    members_.push_back(std::move(m));
+    touch();
+    return num_members() - 1;
+  }
+
+  void constrain(Index node, Dof dof) {
+    constrained_[idx(global_dof(node, dof))] = true;
+    touch();
+  }
+
+  std::vector<Vector2> positions_;
+  std::vector<Member> members_;
+  std::vector<bool> constrained_;    // per global DOF
+  std::vector<Scalar> nodal_mass_;   // per global DOF: m on X, Y; J on Rz
+  std::vector<Scalar> nodal_spring_; // per global DOF
+  Index num_elements_ = 0;
+  std::uint64_t id_ = detail::next_model_id();
+};
+
+}  // namespace stickslip
