@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace stickslip::test {
 
@@ -64,6 +65,86 @@ struct Oscillator {
     ++m;
     return TransitionAction::proceed();
   }
+};
+
+}  // namespace stickslip::test
+
+namespace stickslip::test {
+
+/// Linear system x' = A x + b(t) without guards (one mode), N states (fixed or dynamic).
+template <int N>
+struct LinearSystem {
+  using Scalar = double;
+  using State = Eigen::Matrix<double, N, 1>;
+  using Mode = int;
+  using Matrix = Eigen::Matrix<double, N, N>;
+  Matrix a;
+  void rhs(const Mode&, double, const State& x, State& dxdt) const { dxdt.noalias() = a * x; }
+  Eigen::Index num_guards(const Mode&) const { return 0; }
+  void guards(const Mode&, double, const State&, Eigen::VectorXd&) const {}
+  CrossingDirection guard_direction(const Mode&, Eigen::Index) const {
+    return CrossingDirection::Either;
+  }
+  TransitionAction transition(Mode&, const TriggeredGuards&, double, State&) const {
+    return TransitionAction::proceed();
+  }
+};
+
+/// LinearSystem that also supplies its exact Jacobian (used by Rosenbrock23 instead of
+/// finite differences).
+template <int N>
+struct LinearSystemWithJacobian : LinearSystem<N> {
+  void jacobian(const int&, double, const typename LinearSystem<N>::State&,
+                typename LinearSystem<N>::Matrix& j) const {
+    j = this->a;
+  }
+};
+
+/// Uniform motion x' = 1 (x = t) with guards g_i = w_i x - c_i. A guard that fired once turns to
+/// the opposite direction (so it does not fire again); the mode is the bit set of fired guards.
+struct Ramp {
+  using Scalar = double;
+  using State = Eigen::Matrix<double, 1, 1>;
+  using Mode = unsigned;
+  std::vector<double> weight, level;
+  std::vector<CrossingDirection> direction;
+  void rhs(const Mode&, double, const State&, State& dxdt) const { dxdt[0] = 1.0; }
+  Eigen::Index num_guards(const Mode&) const { return static_cast<Eigen::Index>(level.size()); }
+  void guards(const Mode&, double, const State& x, Eigen::VectorXd& g) const {
+    for (std::size_t i = 0; i < level.size(); ++i)
+      g[static_cast<Eigen::Index>(i)] = weight[i] * x[0] - level[i];
+  }
+  CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
+    const auto k = static_cast<std::size_t>(i);
+    if (!(m & (1u << k))) return direction[k];
+    return direction[k] == CrossingDirection::Rising ? CrossingDirection::Falling
+                                                     : CrossingDirection::Rising;
+  }
+  TransitionAction transition(Mode& m, const TriggeredGuards& which, double, State&) const {
+    for (Eigen::Index i : which) m |= 1u << static_cast<unsigned>(i);
+    return TransitionAction::proceed();
+  }
+};
+
+}  // namespace stickslip::test
+
+namespace stickslip::test {
+
+/// Nonlinear scalar equation x' = -x^2 (no guards): x(t) = x0 / (1 + x0 t).
+struct Riccati {
+  using Scalar = double;
+  using State = Eigen::Matrix<double, 1, 1>;
+  using Mode = int;
+  void rhs(const Mode&, double, const State& x, State& dxdt) const { dxdt[0] = -x[0] * x[0]; }
+  Eigen::Index num_guards(const Mode&) const { return 0; }
+  void guards(const Mode&, double, const State&, Eigen::VectorXd&) const {}
+  CrossingDirection guard_direction(const Mode&, Eigen::Index) const {
+    return CrossingDirection::Either;
+  }
+  TransitionAction transition(Mode&, const TriggeredGuards&, double, State&) const {
+    return TransitionAction::proceed();
+  }
+  static double exact(double t, double x0) { return x0 / (1.0 + x0 * t); }
 };
 
 }  // namespace stickslip::test
