@@ -100,8 +100,9 @@ struct LinearSystemWithJacobian : LinearSystem<N> {
   }
 };
 
-/// Uniform motion x' = 1 (x = t) with guards g_i = w_i x - c_i. A guard that fired once turns to
-/// the opposite direction (so it does not fire again); the mode is the bit set of fired guards.
+/// Uniform motion x' = 1 (x = t) with guards g_i = w_i x - c_i. Each firing of guard i toggles bit
+/// i of the mode; while the bit is set the guard watches the opposite direction (Rising <->
+/// Falling, Either -> Falling), so a crossed guard does not fire again until it turns back.
 struct Ramp {
   using Scalar = double;
   using State = Eigen::Matrix<double, 1, 1>;
@@ -117,11 +118,11 @@ struct Ramp {
   CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
     const auto k = static_cast<std::size_t>(i);
     if (!(m & (1u << k))) return direction[k];
-    return direction[k] == CrossingDirection::Rising ? CrossingDirection::Falling
-                                                     : CrossingDirection::Rising;
+    return direction[k] == CrossingDirection::Falling ? CrossingDirection::Rising
+                                                      : CrossingDirection::Falling;
   }
   TransitionAction transition(Mode& m, const TriggeredGuards& which, double, State&) const {
-    for (Eigen::Index i : which) m |= 1u << static_cast<unsigned>(i);
+    for (Eigen::Index i : which) m ^= 1u << static_cast<unsigned>(i);
     return TransitionAction::proceed();
   }
 };

@@ -213,6 +213,7 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
 
   // Root finding on the dense output, guard by guard; the earliest crossing wins.
   Scalar first = t1;
+  Eigen::Index first_guard = -1;
   for (Eigen::Index i = 0; i < ng; ++i) {
     roots_[i] = std::numeric_limits<Scalar>::infinity();
     if (!monitor_.crossed(i, gb_[i])) continue;
@@ -224,7 +225,10 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
     const auto br = detail::illinois_root(phi, t, monitor_.distance(i, ga_[i]), t1,
                                           monitor_.distance(i, gb_[i]), tol);
     roots_[i] = br.hi;
-    first = std::min(first, br.hi);
+    if (first_guard < 0 || br.hi < first) {
+      first = br.hi;
+      first_guard = i;
+    }
   }
   for (Eigen::Index i = 0; i < ng; ++i)
     if (roots_[i] <= first + tol) triggered_.push_back(i);
@@ -235,7 +239,26 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
   }
   // Re-integrate [t, first] with the method itself: full order at the event, and the core's
   // dense output then covers [t, first].
-  core_.step(sys_, m, t, x_, f_, first - t, xe_, fe_, opt_.rtol, opt_.atol, st);
+  Scalar stepped_to = first;
+  auto step_to = [&](Scalar tau) {
+    core_.step(sys_, m, t, x_, f_, tau - t, xe_, fe_, opt_.rtol, opt_.atol, st);
+    eval_guards(m, tau, xe_, gt_, st);
+    stepped_to = tau;
+    return monitor_.distance(first_guard, gt_[first_guard]);
+  };
+  const Scalar d_first = step_to(first);
+  if (d_first >= Scalar(0)) {
+    // The dense output and the re-integrated step disagree (by the dense-output error) on which
+    // side of the guard `first` lies: continue on the step itself, so that the state handed to
+    // the transition has crossed.
+    const auto br = detail::illinois_root(step_to, first, d_first, t1,
+                                          monitor_.distance(first_guard, gb_[first_guard]), tol);
+    if (stepped_to != br.hi) step_to(br.hi);  // (re-stepping to t1 reproduces x1 exactly)
+    first = br.hi;
+    triggered_.clear();
+    for (Eigen::Index i = 0; i < ng; ++i)
+      if (monitor_.crossed(i, gt_[i])) triggered_.push_back(i);
+  }
   return first;
 }
 
