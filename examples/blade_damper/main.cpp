@@ -1,0 +1,399 @@
+// The paper's turbine blade with two under-platform friction dampers (He, Ouyang, Ren & He),
+// built from stickslip's components: runs preloads, writes CSV/JSON records and spectra, a
+// preload sweep with a regime map, and prints a summary. `blade_damper --help` for options.
+#include "blade_run.hpp"
+#include "blade_scene.hpp"
+
+#include <stickslip/stickslip.hpp>
+#include <unsupported/Eigen/FFT>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using namespace stickslip;
+using Index = Eigen::Index;
+namespace fs = std::filesystem;
+
+struct Cli {
+  blade::BladeParameters params;
+  blade::RunSettings settings;
+  std::vector<double> preloads;
+  bool sweep = false;
+  double sweep_lo = 0.5, sweep_hi = 40.0;
+  int sweep_count = 32;
+  double sweep_duration = -1;  // < 0: same as duration
+  int threads = 0;
+  std::string out = "out";
+};
+
+const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
+
+Usage: blade_damper [options]
+  --demo                 the main job: preloads 1, 12, 26 N and a 32-point preload sweep
+  --preload N0           one run at preload N0 [N] (repeatable)
+  --preloads a,b,...     runs at these preloads [N]
+  --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel
+  --sweep-duration T     duration of each sweep run [s] (default: --duration)
+  --duration T           simulated time [s] (default 20)
+  --modes n              retained modes (default 6)
+  --blade-elements n     elements on the blade (default 20)
+  --platform-elements n  elements on the platform, even (default 8)
+  --y0 Y                 excitation point above the root [m] (default 0.05)
+  --damping z            modal damping ratio of every mode (default 0)
+  --integrator name      rk4 | dopri5 | rosenbrock23 (default dopri5)
+  --rtol r --atol a      tolerances of the adaptive integrators (default 1e-8, 1e-12)
+  --dt h                 RK4 step [s] (default 1e-4, the paper's)
+  --events name          root | bisection (event location; default root)
+  --constant-normal-load N = N0 (no damper vertical inertia)
+  --fixed-contact        contact points do not move along the platform
+  --regularised v_eps    tanh friction with mu_k and this velocity scale [m/s]
+  --threads n            worker threads of the sweep (default: all cores)
+  --out DIR              output folder (default out)
+  --help                 this text
+)";
+
+std::vector<double> parse_list(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  std::string item;
+  while (std::getline(ss, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+Cli parse(int argc, char** argv) {
+  Cli c;
+  c.settings.run.stepper.rtol = 1e-8;
+  c.settings.run.stepper.atol = 1e-12;
+  c.settings.run.stepper.event_time_tolerance = 1e-12;
+  auto need = [&](int& i) -> std::string {
+    if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      std::cout << kHelp;
+      std::exit(0);
+    } else if (a == "--demo") {
+      c.preloads = {1.0, 12.0, 26.0};
+      c.sweep = true;
+    } else if (a == "--preload") {
+      c.preloads.push_back(std::stod(need(i)));
+    } else if (a == "--preloads") {
+      for (double p : parse_list(need(i))) c.preloads.push_back(p);
+    } else if (a == "--sweep") {
+      const std::string s = need(i);
+      if (std::sscanf(s.c_str(), "%lf:%lf:%d", &c.sweep_lo, &c.sweep_hi, &c.sweep_count) != 3 ||
+          c.sweep_count < 2 || !(c.sweep_hi > c.sweep_lo))
+        throw std::invalid_argument("--sweep expects lo:hi:count with hi > lo and count >= 2");
+      c.sweep = true;
+    } else if (a == "--sweep-duration") {
+      c.sweep_duration = std::stod(need(i));
+    } else if (a == "--duration") {
+      c.settings.duration = std::stod(need(i));
+    } else if (a == "--modes") {
+      c.params.modes = std::stoi(need(i));
+    } else if (a == "--blade-elements") {
+      c.params.blade_elements = std::stoi(need(i));
+    } else if (a == "--platform-elements") {
+      c.params.platform_elements = std::stoi(need(i));
+    } else if (a == "--y0") {
+      c.params.y0 = std::stod(need(i));
+    } else if (a == "--damping") {
+      c.params.damping_ratio = std::stod(need(i));
+    } else if (a == "--integrator") {
+      c.settings.run.integrator = parse_integrator(need(i));
+    } else if (a == "--rtol") {
+      c.settings.run.stepper.rtol = std::stod(need(i));
+    } else if (a == "--atol") {
+      c.settings.run.stepper.atol = std::stod(need(i));
+    } else if (a == "--dt") {
+      c.settings.run.stepper.fixed_step = std::stod(need(i));
+    } else if (a == "--events") {
+      const std::string e = need(i);
+      if (e == "root") c.settings.run.stepper.event_location = EventLocation::DenseRootFinding;
+      else if (e == "bisection") c.settings.run.stepper.event_location = EventLocation::Bisection;
+      else throw std::invalid_argument("--events expects root or bisection, got " + e);
+    } else if (a == "--constant-normal-load") {
+      c.params.model.normal_load = NormalLoad::Constant;
+    } else if (a == "--fixed-contact") {
+      c.params.model.moving_contact = false;
+    } else if (a == "--regularised") {
+      c.params.regularised_v_eps = std::stod(need(i));
+    } else if (a == "--threads") {
+      c.threads = std::stoi(need(i));
+    } else if (a == "--out") {
+      c.out = need(i);
+    } else {
+      throw std::invalid_argument("unknown option " + a + " (see --help)");
+    }
+  }
+  if (!(c.settings.duration > 0)) throw std::invalid_argument("--duration must be > 0");
+  if (c.params.platform_elements % 2 != 0)
+    throw std::invalid_argument("--platform-elements must be even (the blade tip is the platform's middle node)");
+  if (c.preloads.empty() && !c.sweep) c.preloads = {12.0};
+  c.settings.record_window = std::min(1.0, c.settings.duration);
+  return c;
+}
+
+std::string fmt(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+std::string tag(double preload) {
+  char b[64];
+  std::snprintf(b, sizeof b, "N0_%g", preload);
+  return b;
+}
+
+/// Natural frequencies [Hz] of the frame alone, and of the all-stuck system reduced on the same
+/// retained modes (I + sum m (a a^T + b b^T), omega^2 + sum k b b^T), as the simulation sees it.
+struct Frequencies {
+  std::vector<double> frame, stuck;
+};
+Frequencies frequencies(blade::BladeScene& scene) {
+  Frequencies fr;
+  const auto& omega = scene.basis.omega();
+  for (Index j = 0; j < omega.size(); ++j) fr.frame.push_back(omega[j] / (2 * M_PI));
+  const Index n = scene.basis.size();
+  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n), K = scene.system->omega_squared().asDiagonal();
+  for (const auto& d : scene.system->dampers()) {
+    const Eigen::VectorXd a = scene.system->point_shape(d.member, d.contact_coordinate, LoadDirection::Transverse);
+    const Eigen::VectorXd b = scene.system->point_shape(d.member, d.contact_coordinate, LoadDirection::Axial);
+    const double m = d.effective_mass();
+    M += m * b * b.transpose();
+    if (scene.system->options().normal_load == NormalLoad::Inertial) M += m * a * a.transpose();
+    K += d.effective_stiffness() * b * b.transpose();
+  }
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+  for (Index j = 0; j < n; ++j) fr.stuck.push_back(std::sqrt(std::max(0.0, es.eigenvalues()[j])) / (2 * M_PI));
+  return fr;
+}
+
+/// Amplitude spectrum (single-sided, amplitude units) of a uniformly sampled signal, Eigen's FFT.
+std::vector<double> amplitude_spectrum(const std::vector<double>& signal) {
+  Eigen::FFT<double> fft;
+  std::vector<double> in(signal);
+  const double mean = in.empty() ? 0.0 : std::accumulate(in.begin(), in.end(), 0.0) / double(in.size());
+  for (double& v : in) v -= mean;
+  std::vector<std::complex<double>> out;
+  fft.fwd(out, in);
+  std::vector<double> amp(in.size() / 2 + 1);
+  for (std::size_t k = 0; k < amp.size(); ++k)
+    amp[k] = (k == 0 ? 1.0 : 2.0) * std::abs(out[k]) / double(in.size());
+  return amp;
+}
+
+void write_run(const fs::path& dir, const blade::RunRecord& r, const Frequencies& fr, double dt,
+               const blade::BladeParameters& p, const blade::RunSettings& s) {
+  const std::string t = tag(r.preload);
+  {
+    std::ofstream o(dir / ("history_" + t + ".csv"));
+    o << "t,tip,N1,N2,f1,f2,V1,V2,x1,x2,y1,y2,X1,X2,state1,state2\n";
+    for (const auto& w : r.window) {
+      o << fmt(w.t) << ',' << fmt(w.tip);
+      for (const double* arr : {w.N, w.f, w.V, w.x, w.y, w.X}) o << ',' << fmt(arr[0]) << ',' << fmt(arr[1]);
+      o << ',' << w.state[0] << ',' << w.state[1] << '\n';
+    }
+  }
+  {
+    std::ofstream o(dir / ("tip_" + t + ".csv"));
+    o << "t,tip\n";
+    for (std::size_t k = 0; k < r.tip_t.size(); ++k) o << fmt(r.tip_t[k]) << ',' << fmt(r.tip_x[k]) << '\n';
+  }
+  {
+    std::ofstream o(dir / ("events_" + t + ".csv"));
+    o << "t,damper,from,to\n";
+    for (const auto& e : r.events)
+      o << fmt(e.t) << ',' << e.damper << ',' << to_string(e.from) << ',' << to_string(e.to) << '\n';
+  }
+  if (r.window.size() > 8) {
+    std::vector<std::vector<double>> sig(11);
+    for (const auto& w : r.window) {
+      sig[0].push_back(w.tip);
+      for (int i = 0; i < 2; ++i) {
+        sig[static_cast<std::size_t>(1 + i)].push_back(w.N[i]);
+        sig[static_cast<std::size_t>(3 + i)].push_back(w.f[i]);
+        sig[static_cast<std::size_t>(5 + i)].push_back(w.x[i]);
+        sig[static_cast<std::size_t>(7 + i)].push_back(w.y[i]);
+      }
+    }
+    std::vector<std::vector<double>> spec;
+    for (std::size_t k = 0; k < 9; ++k) spec.push_back(amplitude_spectrum(sig[k]));
+    std::ofstream o(dir / ("spectra_" + t + ".csv"));
+    o << "frequency_hz,tip,N1,N2,f1,f2,x1,x2,y1,y2\n";
+    const double df = 1.0 / (double(r.window.size()) * dt);
+    for (std::size_t k = 0; k < spec[0].size(); ++k) {
+      o << fmt(double(k) * df);
+      for (std::size_t j = 0; j < 9; ++j) o << ',' << fmt(spec[j][k]);
+      o << '\n';
+    }
+  }
+  std::ofstream o(dir / ("summary_" + t + ".json"));
+  o << "{\n  \"preload_N\": " << fmt(r.preload) << ",\n  \"damper_mass_kg\": " << fmt(p.damper_mass())
+    << ",\n  \"status\": \"" << to_string(r.status) << "\",\n  \"message\": \"" << r.message
+    << "\",\n  \"t_end\": " << fmt(r.t_end) << ",\n  \"regime\": \"" << r.overall_regime << "\",\n  \"dampers\": [";
+  for (int i = 0; i < 2; ++i)
+    o << (i ? ", " : "") << "{\"regime\": \"" << r.regime[i].regime << "\", \"stick_fraction\": "
+      << fmt(r.regime[i].stick_fraction) << ", \"transitions_per_period\": "
+      << fmt(r.regime[i].transitions_per_period) << "}";
+  o << "],\n  \"tip_amplitude_max_m\": " << fmt(r.tip_max) << ",\n  \"tip_rms_m\": " << fmt(r.tip_rms)
+    << ",\n  \"energy_density_m2\": " << fmt(r.energy_density) << ",\n  \"energy_window_s\": ["
+    << fmt(s.energy_t1) << ", " << fmt(s.energy_t2) << "],\n  \"energy_audit_residual_J\": "
+    << fmt(r.energy_residual) << ",\n  \"energy_audit_scale_J\": " << fmt(r.energy_scale)
+    << ",\n  \"natural_frequencies_frame_hz\": [";
+  for (std::size_t k = 0; k < fr.frame.size(); ++k) o << (k ? ", " : "") << fmt(fr.frame[k]);
+  o << "],\n  \"natural_frequencies_all_stuck_hz\": [";
+  for (std::size_t k = 0; k < fr.stuck.size(); ++k) o << (k ? ", " : "") << fmt(fr.stuck[k]);
+  o << "],\n  \"integrator\": \"" << to_string(s.run.integrator) << "\",\n  \"rtol\": " << fmt(s.run.stepper.rtol)
+    << ",\n  \"atol\": " << fmt(s.run.stepper.atol) << ",\n  \"cpu_seconds\": " << fmt(r.cpu_seconds)
+    << ",\n  \"stats\": {\"accepted_steps\": " << r.stats.accepted_steps
+    << ", \"rejected_steps\": " << r.stats.rejected_steps << ", \"rhs_evaluations\": " << r.stats.rhs_evaluations
+    << ", \"jacobian_evaluations\": " << r.stats.jacobian_evaluations << ", \"events\": " << r.stats.events
+    << "}\n}\n";
+}
+
+void print_run(const blade::RunRecord& r, const Frequencies& fr) {
+  std::printf("N0 = %5.1f N: %-24s tip max %.3e m, rms %.3e m, E = %.4e m^2, stick fractions %.3f / %.3f, "
+              "%.2f / %.2f switches per period, %ld events, %.2f s CPU, f1 frame %.2f Hz, all-stuck %.2f Hz%s%s\n",
+              r.preload, r.overall_regime.c_str(), r.tip_max, r.tip_rms, r.energy_density,
+              r.regime[0].stick_fraction, r.regime[1].stick_fraction, r.regime[0].transitions_per_period,
+              r.regime[1].transitions_per_period, r.total_events, r.cpu_seconds,
+              fr.frame.empty() ? 0.0 : fr.frame[0], fr.stuck.empty() ? 0.0 : fr.stuck[0],
+              r.status == Status::Success ? "" : " - ", r.status == Status::Success ? "" : r.message.c_str());
+}
+
+blade::RunRecord run_preload(const Cli& c, double preload, double duration, Frequencies* fr_out) {
+  blade::BladeParameters p = c.params;
+  p.preload = preload;
+  blade::RunSettings s = c.settings;
+  s.duration = duration;
+  s.record_window = std::min(1.0, duration);
+  blade::BladeScene scene = blade::make_blade_scene(p);
+  if (fr_out) *fr_out = frequencies(scene);
+  return blade::run_scene(scene, s);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Cli c;
+  try {
+    c = parse(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "blade_damper: %s\n", e.what());
+    return 2;
+  }
+  try {
+    fs::create_directories(c.out);
+    const fs::path out(c.out);
+    std::printf("blade_damper: paper section 3 parameters, %d modes, %d + %d elements, integrator %s "
+                "(rtol %.0e), duration %.1f s, output in %s/\n",
+                c.params.modes, c.params.blade_elements, c.params.platform_elements,
+                to_string(c.settings.run.integrator), c.settings.run.stepper.rtol, c.settings.duration,
+                c.out.c_str());
+    std::vector<blade::RunRecord> runs;
+    for (double preload : c.preloads) {
+      Frequencies fr;
+      blade::RunRecord r = run_preload(c, preload, c.settings.duration, &fr);
+      blade::BladeParameters p = c.params;
+      p.preload = preload;
+      write_run(out, r, fr, c.settings.sample_interval, p, c.settings);
+      print_run(r, fr);
+      runs.push_back(std::move(r));
+    }
+
+    if (c.sweep) {
+      const double duration = c.sweep_duration > 0 ? c.sweep_duration : c.settings.duration;
+      std::vector<double> preloads(static_cast<std::size_t>(c.sweep_count));
+      for (int k = 0; k < c.sweep_count; ++k)
+        preloads[static_cast<std::size_t>(k)] = c.sweep_lo + (c.sweep_hi - c.sweep_lo) * k / (c.sweep_count - 1);
+      std::vector<blade::RunRecord> results(preloads.size());
+      std::atomic<std::size_t> next{0}, done{0};
+      std::mutex print_mutex;
+      const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+      const unsigned nthreads = c.threads > 0 ? static_cast<unsigned>(c.threads) : hw;
+      auto worker = [&]() {
+        for (std::size_t k = next++; k < preloads.size(); k = next++) {
+          results[k] = run_preload(c, preloads[k], duration, nullptr);
+          results[k].window.clear();
+          const std::size_t d = ++done;
+          std::lock_guard<std::mutex> lock(print_mutex);
+          std::printf("\rsweep: %zu/%zu preloads done (last N0 = %.2f N: %s)        ", d, preloads.size(),
+                      preloads[k], results[k].overall_regime.c_str());
+          std::fflush(stdout);
+        }
+      };
+      std::vector<std::thread> pool;
+      for (unsigned t = 0; t < nthreads; ++t) pool.emplace_back(worker);
+      for (auto& th : pool) th.join();
+      std::printf("\n");
+      std::size_t best = 0;
+      for (std::size_t k = 0; k < results.size(); ++k)
+        if (results[k].status == Status::Success &&
+            (results[best].status != Status::Success || results[k].energy_density < results[best].energy_density))
+          best = k;
+      std::ofstream o(out / "sweep.csv");
+      o << "preload_N,energy_density_m2,regime,stick_fraction_1,stick_fraction_2,transitions_per_period_1,"
+           "transitions_per_period_2,tip_max_m,status,cpu_seconds,rhs_evaluations,events\n";
+      for (const auto& r : results)
+        o << fmt(r.preload) << ',' << fmt(r.energy_density) << ',' << r.overall_regime << ','
+          << fmt(r.regime[0].stick_fraction) << ',' << fmt(r.regime[1].stick_fraction) << ','
+          << fmt(r.regime[0].transitions_per_period) << ',' << fmt(r.regime[1].transitions_per_period) << ','
+          << fmt(r.tip_max) << ',' << to_string(r.status) << ',' << fmt(r.cpu_seconds) << ','
+          << r.stats.rhs_evaluations << ',' << r.total_events << '\n';
+      // Regime map: contiguous preload ranges with the same regime.
+      std::ofstream j(out / "sweep.json");
+      j << "{\n  \"duration_s\": " << fmt(duration) << ",\n  \"optimum\": {\"preload_N\": "
+        << fmt(results[best].preload) << ", \"energy_density_m2\": " << fmt(results[best].energy_density)
+        << ", \"regime\": \"" << results[best].overall_regime << "\"},\n  \"regime_map\": [";
+      std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\nregime map:\n", results[best].preload,
+                  results[best].energy_density, results[best].overall_regime.c_str());
+      std::size_t start = 0;
+      bool first = true;
+      for (std::size_t k = 1; k <= results.size(); ++k) {
+        if (k == results.size() || results[k].overall_regime != results[start].overall_regime) {
+          j << (first ? "" : ", ") << "{\"regime\": \"" << results[start].overall_regime
+            << "\", \"from_N\": " << fmt(results[start].preload) << ", \"to_N\": " << fmt(results[k - 1].preload) << "}";
+          std::printf("  %6.2f .. %6.2f N: %s\n", results[start].preload, results[k - 1].preload,
+                      results[start].overall_regime.c_str());
+          first = false;
+          start = k;
+        }
+      }
+      j << "]\n}\n";
+    }
+
+    if (!c.preloads.empty()) {
+      // Does each of the paper's preloads fall in the paper's regime?
+      const struct { double n0; const char* regime; } paper[] = {{1.0, "gross slip"}, {12.0, "stick-slip"}, {26.0, "stick"}};
+      for (const auto& r : runs)
+        for (const auto& pr : paper)
+          if (std::abs(r.preload - pr.n0) < 1e-9)
+            std::printf("paper: N0 = %g N is in the %s regime; here: %s -> %s\n", pr.n0, pr.regime,
+                        r.overall_regime.c_str(), r.overall_regime == pr.regime ? "agrees" : "DIFFERS");
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "blade_damper: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

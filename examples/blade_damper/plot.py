@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""PNG figures of the blade_damper results, in the style of the paper's Figs 8-20.
+
+Usage: /usr/bin/python3 examples/blade_damper/plot.py OUT_DIR
+Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv and sweep.csv written by blade_damper.
+"""
+import csv
+import glob
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if not rows:
+        return {}
+    cols = {k: [] for k in rows[0]}
+    for r in rows:
+        for k, v in r.items():
+            try:
+                cols[k].append(float(v))
+            except ValueError:
+                cols[k].append(v)
+    return cols
+
+
+def spectrum_axis(ax, spec, key, label, fmax=400.0):
+    f = [x for x in spec["frequency_hz"] if x <= fmax]
+    ax.plot(f, spec[key][: len(f)], lw=0.8)
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel(label)
+
+
+def plot_run(out, tag):
+    hist = read_csv(os.path.join(out, f"history_{tag}.csv"))
+    if not hist:
+        return []
+    spec_path = os.path.join(out, f"spectra_{tag}.csv")
+    spec = read_csv(spec_path) if os.path.exists(spec_path) else None
+    t = hist["t"]
+    made = []
+
+    # Fig 8/12/16: tip response and its spectrum.
+    fig, ax = plt.subplots(1, 2, figsize=(10, 3.5))
+    ax[0].plot(t, [1e3 * v for v in hist["tip"]], lw=0.8)
+    ax[0].set_xlabel("t [s]")
+    ax[0].set_ylabel("blade tip x [mm]")
+    if spec:
+        spectrum_axis(ax[1], spec, "tip", "tip amplitude [m]")
+    fig.suptitle(f"Blade tip, {tag.replace('_', ' = ')} N")
+    fig.tight_layout()
+    made.append(os.path.join(out, f"tip_{tag}.png"))
+    fig.savefig(made[-1], dpi=110)
+    plt.close(fig)
+
+    # Fig 9/13/17: normal and friction forces with spectra.
+    fig, ax = plt.subplots(2, 4, figsize=(14, 6))
+    for i in (1, 2):
+        ax[0, i - 1].plot(t, hist[f"N{i}"], lw=0.8)
+        ax[0, i - 1].set_ylabel(f"N{i} [N]")
+        ax[1, i - 1].plot(t, hist[f"f{i}"], lw=0.8)
+        ax[1, i - 1].set_ylabel(f"f{i} [N]")
+        for a in (ax[0, i - 1], ax[1, i - 1]):
+            a.set_xlabel("t [s]")
+        if spec:
+            spectrum_axis(ax[0, i + 1], spec, f"N{i}", f"|N{i}| [N]")
+            spectrum_axis(ax[1, i + 1], spec, f"f{i}", f"|f{i}| [N]")
+    fig.suptitle(f"Contact forces, {tag.replace('_', ' = ')} N")
+    fig.tight_layout()
+    made.append(os.path.join(out, f"forces_{tag}.png"))
+    fig.savefig(made[-1], dpi=110)
+    plt.close(fig)
+
+    # Fig 10/14/18: damper motion (x along the platform, y with it) and spectra.
+    fig, ax = plt.subplots(2, 4, figsize=(14, 6))
+    for i in (1, 2):
+        ax[0, i - 1].plot(t, [1e6 * v for v in hist[f"x{i}"]], lw=0.8)
+        ax[0, i - 1].set_ylabel(f"x{i} [um]")
+        ax[1, i - 1].plot(t, [1e6 * v for v in hist[f"y{i}"]], lw=0.8)
+        ax[1, i - 1].set_ylabel(f"y{i} [um]")
+        for a in (ax[0, i - 1], ax[1, i - 1]):
+            a.set_xlabel("t [s]")
+        if spec:
+            spectrum_axis(ax[0, i + 1], spec, f"x{i}", f"|x{i}| [m]")
+            spectrum_axis(ax[1, i + 1], spec, f"y{i}", f"|y{i}| [m]")
+    fig.suptitle(f"Damper motion, {tag.replace('_', ' = ')} N")
+    fig.tight_layout()
+    made.append(os.path.join(out, f"dampers_{tag}.png"))
+    fig.savefig(made[-1], dpi=110)
+    plt.close(fig)
+
+    # Fig 11/15/19: phase planes, relative velocity vs damper displacement.
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for i in (1, 2):
+        ax[i - 1].plot([1e6 * v for v in hist[f"x{i}"]], [1e3 * v for v in hist[f"V{i}"]], lw=0.6)
+        ax[i - 1].set_xlabel(f"x{i} [um]")
+        ax[i - 1].set_ylabel(f"sliding velocity V{i} [mm/s]")
+        ax[i - 1].set_title("left damper" if i == 1 else "right damper")
+    fig.tight_layout()
+    made.append(os.path.join(out, f"phase_{tag}.png"))
+    fig.savefig(made[-1], dpi=110)
+    plt.close(fig)
+    return made
+
+
+def plot_sweep(out):
+    path = os.path.join(out, "sweep.csv")
+    if not os.path.exists(path):
+        return []
+    s = read_csv(path)
+    colours = {"gross slip": "tab:red", "stick-slip": "tab:orange", "stick": "tab:blue"}
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.plot(s["preload_N"], s["energy_density_m2"], "-", color="0.6", lw=1)
+    for regime, colour in colours.items():
+        xs = [p for p, r in zip(s["preload_N"], s["regime"]) if r == regime]
+        ys = [e for e, r in zip(s["energy_density_m2"], s["regime"]) if r == regime]
+        if xs:
+            ax.plot(xs, ys, "o", color=colour, label=regime)
+    others = [(p, e) for p, e, r in zip(s["preload_N"], s["energy_density_m2"], s["regime"]) if r not in colours]
+    if others:
+        ax.plot([p for p, _ in others], [e for _, e in others], "x", color="k", label="mixed / stopped")
+    ax.set_xlabel("preload N0 [N]")
+    ax.set_ylabel("normalised energy density E [m^2]")
+    ax.set_yscale("log")
+    ax.legend()
+    ax.set_title("Preload sweep (paper Fig. 20) with regime map")
+    fig.tight_layout()
+    png = os.path.join(out, "sweep.png")
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return [png]
+
+
+def main():
+    out = sys.argv[1] if len(sys.argv) > 1 else "out"
+    made = []
+    for path in sorted(glob.glob(os.path.join(out, "history_N0_*.csv"))):
+        tag = os.path.basename(path)[len("history_"):-len(".csv")]
+        made += plot_run(out, tag)
+    made += plot_sweep(out)
+    print(f"plot.py: wrote {len(made)} PNG figures in {out}/")
+
+
+if __name__ == "__main__":
+    main()

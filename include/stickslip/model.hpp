@@ -1,0 +1,11 @@
+#pragma once
+/// \file model.hpp
+/// \brief Composition layer: friction-damped modal systems built from the five components.
+
+#include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/friction_damped_system.hpp"
+#include "stickslip/model/model_options.hpp"
+#include "stickslip/model/normal_load.hpp"
+#include "stickslip/model/point_damper.hpp"
+#include "stickslip/model/point_load.hpp"
+#include "stickslip/model/simulate.hpp"

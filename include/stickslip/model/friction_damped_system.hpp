@@ -1,0 +1,707 @@
+#pragma once
+/// \file friction_damped_system.hpp
+/// \brief A frame's retained modes + any number of sliding point-contact friction dampers +
+/// external point loads, as a hybrid system for HybridStepper (the paper's eqs 11-29,
+/// generalised to N dampers on any members). The algebra is written out in docs/model.md.
+
+#include "stickslip/beam.hpp"
+#include "stickslip/contact.hpp"
+#include "stickslip/detail/validate.hpp"
+#include "stickslip/modal.hpp"
+#include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/model_options.hpp"
+#include "stickslip/model/point_damper.hpp"
+#include "stickslip/model/point_load.hpp"
+#include "stickslip/moving_load.hpp"
+#include "stickslip/ode/hybrid_system.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace stickslip {
+
+namespace detail {
+template <class T>
+struct is_std_variant : std::false_type {};
+template <class... Ts>
+struct is_std_variant<std::variant<Ts...>> : std::true_type {};
+
+/// Call f(law) with the concrete law (visiting a std::variant of laws).
+template <class Law, class F>
+decltype(auto) with_law(const Law& law, F&& f) {
+  if constexpr (is_std_variant<Law>::value)
+    return std::visit(std::forward<F>(f), law);
+  else
+    return std::forward<F>(f)(law);
+}
+
+/// True when the (possibly variant) law has a stick state (exact Coulomb-type laws).
+template <class Law>
+bool law_has_stick_state(const Law& law) {
+  return with_law(law, [](const auto& l) {
+    return std::decay_t<decltype(l)>::has_stick_state;
+  });
+}
+
+inline bool is_slipping(ContactState s) noexcept {
+  return s == ContactState::SlipPositive || s == ContactState::SlipNegative;
+}
+inline int slip_sign(ContactState s) noexcept {
+  return s == ContactState::SlipPositive ? 1 : (s == ContactState::SlipNegative ? -1 : 0);
+}
+}  // namespace detail
+
+/// Friction-damped modal system: a hybrid system (see stickslip/ode/hybrid_system.hpp).
+///
+/// Continuous state, in this order (offsets from the accessors):
+///   q (n modal coordinates) | q' (n) | x_i (damper displacements along u, D) | x_i' (D)
+///   | X_i (contact coordinates along the member, D, only with a moving contact)
+///   | W_ext, D_visc, D_fric, W_slope (energy-audit integrals, only with the audit on).
+/// Discrete mode: DamperStates, one ContactState per damper.
+///
+/// Equations (paper eqs 11-25 generalised; m_i, k_i effective = share x mass/stiffness):
+///   q'' + 2 zeta omega q' + omega^2 q = sum_l F_l(t) psi_l + sum_i (N_i a_i - f_i b_i)     (25)
+///   m_i x_i'' + k_i x_i = f_i                                                            (11)
+///   N_i = N0_i - m_i y_i'',  y_i'' = a_i^T q'' + 2 q'^T a_i' V_i + q^T a_i'' V_i^2 + s_i V_i' (19, 23)
+///   V_i = X_i' = x_i' - q'^T b_i  (sliding velocity of the damper relative to the member)
+/// with a_i = psi_w(X_i), b_i = psi_u(X_i), a' = psi_w', a'' = psi_w'', s_i = q^T psi_w'(X_i).
+/// Slip: f_i = -sign(V_i) mu_k N_i (15-16); stick: V_i = 0 and f_i is the constraint force.
+/// All unknowns (q'', N, f, x'') are solved together: q'' = r0 + C y with C = [a_1..a_D b_1..b_D]
+/// and y = [N; -f], which leaves a (2D x 2D) dense system through the Gram matrix C^T C
+/// (the Woodbury/capacitance form of the identity-plus-low-rank mode-space matrix of eqs 26-29).
+template <class Scalar_, class Law_ = FrictionLawVariant<Scalar_>>
+class FrictionDampedSystem {
+ public:
+  using Scalar = Scalar_;
+  using Law = Law_;
+  using State = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Vector = State;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Mode = DamperStates;
+  using Index = Eigen::Index;
+  using Damper = PointDamper<Scalar, Law>;
+  using Load = PointLoad<Scalar>;
+  using Shapes = MemberShapes<Scalar>;
+  using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// One contact switch, logged by `transition`.
+  struct ContactEvent {
+    Scalar t;
+    Index damper;
+    ContactState from;
+    ContactState to;
+  };
+
+  /// Why the system stopped a run (kept with the damper and the time).
+  enum class StopReason { None, LiftOff, LeftMember, NoConsistentState };
+
+  /// Forces and kinematics of the dampers at one (mode, t, x), from the coupled solve.
+  struct Evaluation {
+    Vector qdd;    ///< modal accelerations
+    Vector N;      ///< normal forces on the member [N]
+    Vector f;      ///< friction forces on the dampers along u [N] (minus that on the member)
+    Vector V;      ///< sliding velocities of dampers relative to the member [m/s]
+    Vector Vdot;   ///< their time derivatives
+    Vector xdd;    ///< damper accelerations
+    Vector X;      ///< contact coordinates
+    Vector slope;  ///< member slope q^T psi_w'(X) at the contacts
+    Vector y;      ///< damper displacements along the contact normal, y = q^T psi_w(X) (eq 17)
+    bool finite = true;
+  };
+
+  /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
+  struct EnergyBalance {
+    Scalar mechanical;   ///< E(t): modal kinetic + strain + dampers' kinetic, spring, preload potential
+    Scalar external_work;
+    Scalar viscous_dissipation;
+    Scalar friction_dissipation;
+    Scalar slope_work;   ///< work of the normal forces as the contacts slide over a sloped member
+    Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope)
+  };
+
+  /// Builds the system; throws std::invalid_argument on a bad damper, load or option.
+  FrictionDampedSystem(const FrameModel<Scalar>& model, const ModalBasis<Scalar>& basis,
+                       std::vector<Damper> dampers, std::vector<Load> loads = {},
+                       ModelOptions<Scalar> options = {})
+      : dampers_(std::move(dampers)), loads_(std::move(loads)), options_(options) {
+    n_ = basis.size();
+    D_ = static_cast<Index>(dampers_.size());
+    if (n_ < 1) detail::throw_invalid("FrictionDampedSystem", "basis must hold >= 1 mode", n_);
+    if (D_ > DamperStates::max_dampers)
+      detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
+    if (!options_.moving_contact) options_.convective_terms = false;
+
+    omega2_ = basis.omega().array().square().matrix();
+    two_zeta_omega_ = (Scalar(2) * basis.damping_ratios().array() * basis.omega().array()).matrix();
+
+    // One MemberShapes per member touched by a damper or a load.
+    auto shapes_for = [&](Index member) -> Index {
+      for (std::size_t s = 0; s < shape_members_.size(); ++s)
+        if (shape_members_[s] == member) return static_cast<Index>(s);
+      if (member < 0 || member >= model.num_members())
+        detail::throw_invalid("FrictionDampedSystem", "member index does not exist", member);
+      // The model watches the member ends itself (guards on X, policy Throw), so the shapes
+      // extrapolate for the trial stages an integrator may take just past an end.
+      shapes_.emplace_back(model, member, basis,
+                           options_.end_policy == EndPolicy::Clamp ? EndPolicy::Clamp : EndPolicy::Extrapolate);
+      shape_members_.push_back(member);
+      shape_direction_.emplace_back(model.member(member).cos, model.member(member).sin);
+      return static_cast<Index>(shapes_.size() - 1);
+    };
+
+    for (Index i = 0; i < D_; ++i) {
+      const Damper& d = dampers_[static_cast<std::size_t>(i)];
+      d.validate(i);
+      const Index s = shapes_for(d.member);
+      const Shapes& sh = shapes_[static_cast<std::size_t>(s)];
+      if (!(d.contact_coordinate >= Scalar(0) && d.contact_coordinate <= sh.length()))
+        detail::throw_invalid("PointDamper[" + std::to_string(i) + "]",
+                              "contact_coordinate must lie on member " + std::to_string(d.member) +
+                                  " (valid range [0, " + detail::format_value(sh.length()) + "])",
+                              d.contact_coordinate);
+      damper_shape_.push_back(s);
+      has_stick_.push_back(detail::law_has_stick_state(d.law));
+      inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
+    }
+
+    load_psi_.resize(n_, static_cast<Index>(loads_.size()));
+    for (std::size_t l = 0; l < loads_.size(); ++l) {
+      const Load& load = loads_[l];
+      load.validate(static_cast<Index>(l));
+      const std::size_t s = static_cast<std::size_t>(shapes_for(load.member));
+      load_psi_.col(static_cast<Index>(l)) = load_vector(s, load);
+    }
+
+    allocate_workspace();
+    if (!options_.moving_contact) {
+      // Fixed contact points: the shapes and the Gram matrix never change; compute them once.
+      for (Index i = 0; i < D_; ++i) evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
+      G_.noalias() = C_.transpose() * C_;
+    }
+  }
+
+  // ---- layout ---------------------------------------------------------------------------------
+  Index num_modes() const noexcept { return n_; }
+  Index num_dampers() const noexcept { return D_; }
+  Index q_offset() const noexcept { return 0; }
+  Index qd_offset() const noexcept { return n_; }
+  Index x_offset() const noexcept { return 2 * n_; }
+  Index xd_offset() const noexcept { return 2 * n_ + D_; }
+  /// Offset of the contact coordinates (-1 without a moving contact).
+  Index contact_offset() const noexcept { return options_.moving_contact ? 2 * n_ + 2 * D_ : -1; }
+  /// Offset of the energy-audit integrals (-1 without the audit).
+  Index energy_offset() const noexcept {
+    return options_.energy_audit ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) : -1;
+  }
+  Index state_size() const noexcept {
+    return 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + (options_.energy_audit ? 4 : 0);
+  }
+  const ModelOptions<Scalar>& options() const noexcept { return options_; }
+  const std::vector<Damper>& dampers() const noexcept { return dampers_; }
+  const std::vector<Load>& loads() const noexcept { return loads_; }
+  const Vector& omega_squared() const noexcept { return omega2_; }
+  /// Modal row vector of the displacement of point `eps` of `member` along `direction`
+  /// (GlobalX/GlobalY/Axial/Transverse; Moment gives the rotation): displacement = psi . q.
+  /// The member must carry a damper or a load; throws std::invalid_argument otherwise.
+  Vector point_shape(Index member, Scalar eps, LoadDirection direction) const {
+    for (std::size_t s = 0; s < shape_members_.size(); ++s)
+      if (shape_members_[s] == member) {
+        Load probe;
+        probe.member = member;
+        probe.coordinate = eps;
+        probe.direction = direction;
+        return load_vector(s, probe);
+      }
+    detail::throw_invalid("FrictionDampedSystem::point_shape", "no damper or load on member", member);
+  }
+
+  /// Rest state: q = q' = 0, dampers at their supports, contacts at X0, audit integrals 0.
+  State initial_state() const {
+    State x = State::Zero(state_size());
+    if (options_.moving_contact)
+      for (Index i = 0; i < D_; ++i)
+        x[contact_offset() + i] = dampers_[static_cast<std::size_t>(i)].contact_coordinate;
+    return x;
+  }
+
+  /// The dampers' requested initial states.
+  Mode requested_mode() const {
+    Mode m(D_);
+    for (Index i = 0; i < D_; ++i) {
+      const bool stick = has_stick_[static_cast<std::size_t>(i)];
+      m[i] = stick ? dampers_[static_cast<std::size_t>(i)].initial_state : ContactState::SlipPositive;
+    }
+    return m;
+  }
+
+  // ---- hybrid-system concept ------------------------------------------------------------------
+  /// dx/dt in mode `mode` (the coupled solve of docs/model.md, then the state derivatives).
+  void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt) {
+    const Evaluation& e = evaluate(mode, t, x);
+    dxdt.resize(x.size());
+    dxdt.head(n_) = x.segment(n_, n_);
+    dxdt.segment(n_, n_) = e.qdd;
+    dxdt.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
+    dxdt.segment(xd_offset(), D_) = e.xdd;
+    if (options_.moving_contact) dxdt.segment(contact_offset(), D_) = e.V;
+    if (options_.energy_audit) {
+      const auto qd = x.segment(n_, n_);
+      Scalar p_ext = 0;
+      for (Index l = 0; l < load_psi_.cols(); ++l)
+        p_ext += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l).dot(qd);
+      const Index o = energy_offset();
+      dxdt[o] = p_ext;
+      dxdt[o + 1] = qd.dot(two_zeta_omega_.cwiseProduct(qd));
+      dxdt[o + 2] = -e.f.dot(e.V);
+      dxdt[o + 3] = options_.moving_contact ? -(e.N.array() * e.slope.array() * e.V.array()).sum() : Scalar(0);
+    }
+    if (!e.finite) dxdt.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+  }
+
+  Index num_guards(const Mode& mode) const {
+    Index count = 0;
+    for (Index i = 0; i < D_; ++i) count += guards_of(mode, i);
+    return count;
+  }
+
+  void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g) {
+    const Evaluation& e = evaluate(mode, t, x);
+    g.resize(num_guards(mode));
+    Index k = 0;
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const Index nc = contact_guards_of(mode, i);
+      if (nc > 0)
+        detail::with_law(dampers_[iu].law, [&](const auto& law) {
+          CoulombContact<std::decay_t<decltype(law)>> contact(law);
+          contact.guards(mode[i], e.V[i], e.N[i], e.f[i], watch_lift_off(i), g.data() + k);
+        });
+      k += nc;
+      if (end_guards_of(mode, i)) {
+        const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+        g[k++] = e.X[i];
+        g[k++] = L - e.X[i];
+      }
+    }
+  }
+
+  CrossingDirection guard_direction(const Mode& mode, Index idx) const {
+    for (Index i = 0; i < D_; ++i) {
+      const Index nc = contact_guards_of(mode, i);
+      if (idx < nc) {
+        return detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [&](const auto& law) {
+          return CoulombContact<std::decay_t<decltype(law)>>::guard_direction(mode[i], idx,
+                                                                              watch_lift_off(i));
+        });
+      }
+      idx -= nc;
+      if (end_guards_of(mode, i)) {
+        if (idx < 2) return CrossingDirection::Falling;
+        idx -= 2;
+      }
+    }
+    STICKSLIP_ASSERT(false && "guard index out of range");
+    return CrossingDirection::Either;
+  }
+
+  /// Event handling: lift-off and a contact leaving its member stop the run with a reason;
+  /// stick/slip guards pick a consistent set of new contact states for all dampers (see
+  /// docs/model.md) and reset a new stick's sliding velocity to exactly zero.
+  TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x) {
+    std::vector<Index>& involved = involved_;
+    involved.clear();
+    for (Index idx : triggered) {
+      Index i = 0, local = idx;
+      for (; i < D_; ++i) {
+        const Index nc = guards_of(mode, i);
+        if (local < nc) break;
+        local -= nc;
+      }
+      STICKSLIP_ASSERT(i < D_);
+      const Index nc = contact_guards_of(mode, i);
+      const bool lift = watch_lift_off(i) && local == nc - 1;
+      if (local >= nc) return stop(StopReason::LeftMember, i, t, x, mode);
+      if (lift) return stop(StopReason::LiftOff, i, t, x, mode);
+      if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
+    }
+    return resolve(mode, involved, t, x) ? TransitionAction::proceed()
+                                         : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+  }
+
+  /// A consistent initial mode for state x at t, starting from the requested states; it also
+  /// reports lift-off at t0 (N <= 0) through `stop_reason()`. Returns false when none exists.
+  bool make_consistent(Mode& mode, Scalar t, State& x) {
+    std::vector<Index>& involved = involved_;
+    involved.clear();
+    for (Index i = 0; i < D_; ++i)
+      if (mode[i] == ContactState::Stick) involved.push_back(i);
+    if (!resolve(mode, involved, t, x)) return false;
+    {
+      const Evaluation& e = evaluate(mode, t, x);
+      for (Index i = 0; i < D_; ++i)
+        if (watch_lift_off(i) && !(e.N[i] > Scalar(0))) {
+          stop(StopReason::LiftOff, i, t, x, mode);
+          return false;
+        }
+    }
+    return true;
+  }
+
+  // ---- outputs --------------------------------------------------------------------------------
+  /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call.
+  const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x) {
+    if (!(cache_valid_ && t == cache_t_ && mode == cache_mode_ && x.size() == cache_x_.size() &&
+          x == cache_x_)) {
+      solve(mode, t, x);
+      cache_valid_ = true;
+      cache_t_ = t;
+      cache_mode_ = mode;
+      cache_x_ = x;
+    }
+    return eval_;
+  }
+
+  /// Contact switches logged since construction or the last clear_events().
+  const std::vector<ContactEvent>& events() const noexcept { return events_; }
+  void clear_events() { events_.clear(); }
+  StopReason stop_reason() const noexcept { return stop_reason_; }
+  Index stop_damper() const noexcept { return stop_damper_; }
+
+  /// Mechanical energy: modal kinetic + strain energy, the dampers' kinetic energy along u
+  /// (and along w with an inertial normal load), spring energy, and the preload's potential.
+  Scalar mechanical_energy(const Mode& mode, Scalar t, const State& x) {
+    const Evaluation& e = evaluate(mode, t, x);
+    const auto q = x.head(n_);
+    const auto qd = x.segment(n_, n_);
+    Scalar E = Scalar(0.5) * qd.squaredNorm() + Scalar(0.5) * q.dot(omega2_.cwiseProduct(q));
+    for (Index i = 0; i < D_; ++i) {
+      const Damper& d = dampers_[static_cast<std::size_t>(i)];
+      const Scalar m = d.effective_mass(), k = d.effective_stiffness();
+      const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
+      const Scalar y = q.dot(C_.col(i));
+      E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
+      if (inertial_[static_cast<std::size_t>(i)]) {
+        Scalar yd = qd.dot(C_.col(i));
+        if (options_.moving_contact) yd += e.slope[i] * e.V[i];
+        E += Scalar(0.5) * m * yd * yd;
+      }
+    }
+    return E;
+  }
+
+  /// Energy balance at (mode, t, x) against the mechanical energy E0 of the run's start.
+  /// Requires the energy audit option (throws std::invalid_argument otherwise).
+  EnergyBalance energy_balance(const Mode& mode, Scalar t, const State& x, Scalar E0) {
+    if (!options_.energy_audit)
+      detail::throw_invalid("FrictionDampedSystem::energy_balance", "energy_audit option is off", 0);
+    EnergyBalance b;
+    b.mechanical = mechanical_energy(mode, t, x);
+    const Index o = energy_offset();
+    b.external_work = x[o];
+    b.viscous_dissipation = x[o + 1];
+    b.friction_dissipation = x[o + 2];
+    b.slope_work = x[o + 3];
+    b.residual = (b.mechanical - E0) -
+                 (b.external_work - b.viscous_dissipation - b.friction_dissipation + b.slope_work);
+    return b;
+  }
+
+
+ private:
+  // Number of guards of damper i in mode: contact guards (from the contact component, incl.
+  // the lift-off guard when watched) followed by two member-end guards when they apply.
+  Index contact_guards_of(const Mode& mode, Index i) const {
+    return detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [&](const auto& law) {
+      using L = std::decay_t<decltype(law)>;
+      return CoulombContact<L>::num_guards(mode[i], watch_lift_off(i));
+    });
+  }
+  /// Lift-off is watched for dampers whose normal force varies.
+  bool watch_lift_off(Index i) const {
+    return options_.watch_lift_off && inertial_[static_cast<std::size_t>(i)];
+  }
+  bool end_guards_of(const Mode& mode, Index i) const {
+    if (!options_.moving_contact || options_.end_policy != EndPolicy::Throw) return false;
+    return !has_stick_[static_cast<std::size_t>(i)] || detail::is_slipping(mode[i]);
+  }
+  Index guards_of(const Mode& mode, Index i) const {
+    return contact_guards_of(mode, i) + (end_guards_of(mode, i) ? 2 : 0);
+  }
+
+  Vector load_vector(std::size_t shape, const Load& load) const {
+    const Shapes& shapes = shapes_[shape];
+    if (!shapes.contains(load.coordinate))
+      detail::throw_invalid("PointLoad", "coordinate must lie on member " + std::to_string(load.member) +
+                                             " (valid range [0, " + detail::format_value(shapes.length()) + "])",
+                            load.coordinate);
+    typename Shapes::Values v = shapes.evaluate(load.coordinate);
+    const Scalar c = shape_direction_[shape].first, s = shape_direction_[shape].second;
+    switch (load.direction) {
+      case LoadDirection::Axial: return v.psi_u;
+      case LoadDirection::Transverse: return v.psi_w;
+      case LoadDirection::Moment: return v.dpsi_w;
+      case LoadDirection::GlobalX: return c * v.psi_u - s * v.psi_w;
+      case LoadDirection::GlobalY: return s * v.psi_u + c * v.psi_w;
+    }
+    return v.psi_w;
+  }
+
+  void allocate_workspace() {
+    const Index D2 = 2 * D_;
+    values_.resize(static_cast<std::size_t>(D_));
+    cursors_.assign(static_cast<std::size_t>(D_), ElementCursor{});
+    for (auto& v : values_) v.resize(n_);
+    C_.setZero(n_, D2);
+    dpsi_w_.setZero(n_, D_);
+    ddpsi_w_.setZero(n_, D_);
+    dpsi_u_.setZero(n_, D_);
+    G_.setZero(D2, D2);
+    S_.setZero(D2, D2);
+    rhs_.setZero(D2);
+    z_.setZero(D2);
+    y_.setZero(D2);
+    cr_.setZero(D2);
+    r0_.setZero(n_);
+    h_.setZero(D_);
+    d_.setZero(D_);
+    lu_ = Eigen::PartialPivLU<Matrix>(D2);
+    eval_.qdd.setZero(n_);
+    for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y})
+      v->setZero(D_);
+    cache_x_.resize(0);
+    events_.reserve(1024);
+    involved_.reserve(static_cast<std::size_t>(D_));
+  }
+
+  void evaluate_shapes(Index i, Scalar X) const {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    auto& v = values_[iu];
+    shapes_[static_cast<std::size_t>(damper_shape_[iu])].evaluate(X, v, cursors_[iu]);
+    const Scalar side = dampers_[iu].side;  // y_i is measured along side * w
+    C_.col(i) = side * v.psi_w;
+    C_.col(D_ + i) = v.psi_u;
+    dpsi_w_.col(i) = side * v.dpsi_w;
+    ddpsi_w_.col(i) = side * v.ddpsi_w;
+    dpsi_u_.col(i) = v.dpsi_u;
+  }
+
+  /// Signed slip coefficient mu_i with f_i = -mu_i N_i for a slipping (or regularised) damper.
+  Scalar slip_coefficient(Index i, ContactState s, Scalar V) const {
+    return detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [&](const auto& law) -> Scalar {
+      using L = std::decay_t<decltype(law)>;
+      using std::abs;
+      if constexpr (L::has_stick_state)
+        return Scalar(detail::slip_sign(s)) * law.kinetic_coefficient(abs(V));
+      else
+        return law.coefficient(V);
+    });
+  }
+
+  /// The coupled solve for (q'', N, f, x'') in mode `mode` (docs/model.md, "acceleration solve").
+  void solve(const Mode& mode, Scalar t, const State& x) const {
+    const Index n = n_, D = D_;
+    const auto q = x.head(n);
+    const auto qd = x.segment(n, n);
+    Evaluation& e = eval_;
+
+    r0_.noalias() = -omega2_.cwiseProduct(q) - two_zeta_omega_.cwiseProduct(qd);
+    for (Index l = 0; l < load_psi_.cols(); ++l)
+      r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
+
+    const bool moving = options_.moving_contact;
+    for (Index i = 0; i < D; ++i) {
+      const Scalar X = moving ? x[contact_offset() + i] : dampers_[static_cast<std::size_t>(i)].contact_coordinate;
+      e.X[i] = X;
+      if (moving) evaluate_shapes(i, X);
+    }
+    if (moving) G_.noalias() = C_.transpose() * C_;
+    cr_.noalias() = C_.transpose() * r0_;
+
+    const bool convective = options_.convective_terms;
+    S_.setZero();
+    auto add_coupling = [&](Index row, Scalar alpha, Index ia, Scalar beta, Index ib) {
+      // row += (alpha a_ia + beta b_ib)^T C P, with P = diag(I, -I) mapping z = [N; f] to y = [N; -f]
+      S_.row(row).head(D) += alpha * G_.row(ia).head(D) + beta * G_.row(ib).head(D);
+      S_.row(row).tail(D) -= alpha * G_.row(ia).tail(D) + beta * G_.row(ib).tail(D);
+      return alpha * cr_[ia] + beta * cr_[ib];
+    };
+
+    for (Index i = 0; i < D; ++i) {
+      const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
+      const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
+      const Scalar xi = x[x_offset() + i];
+      const ContactState s = mode[i];
+      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && s == ContactState::Stick;
+      const Scalar V = stuck ? Scalar(0) : x[xd_offset() + i] - qd.dot(C_.col(D + i));
+      e.V[i] = V;
+      Scalar slope = 0, h = 0, dd = 0;
+      if (moving) slope = q.dot(dpsi_w_.col(i));
+      if (convective && !stuck) {
+        h = Scalar(2) * qd.dot(dpsi_w_.col(i)) * V + q.dot(ddpsi_w_.col(i)) * V * V;
+        dd = qd.dot(dpsi_u_.col(i)) * V;
+      }
+      e.slope[i] = slope;
+      e.y[i] = q.dot(C_.col(i));
+      h_[i] = h;
+      d_[i] = dd;
+      const Index rN = i, rF = D + i;
+      const bool inertial = inertial_[static_cast<std::size_t>(i)];
+      // Normal-force equation (13-14 with 19 and 22).
+      S_(rN, i) += 1;
+      if (inertial) {
+        if (stuck) {
+          rhs_[rN] = dmp.preload - add_coupling(rN, m, i, Scalar(0), D + i);
+        } else {
+          const Scalar sc = convective ? slope : Scalar(0);
+          S_(rN, D + i) += sc;
+          rhs_[rN] = dmp.preload - m * h + sc * k * xi + m * sc * dd -
+                     add_coupling(rN, m, i, -m * sc, D + i);
+        }
+      } else {
+        rhs_[rN] = dmp.preload;
+      }
+      // Friction equation: stick (11 with x'' = b^T q'') or slip (15-16).
+      S_(rF, D + i) += 1;
+      if (stuck) {
+        rhs_[rF] = k * xi - add_coupling(rF, Scalar(0), i, -m, D + i);
+      } else {
+        S_(rF, i) += slip_coefficient(i, s, V);
+        rhs_[rF] = 0;
+      }
+    }
+
+    lu_.compute(S_);
+    z_.noalias() = lu_.solve(rhs_);
+    e.N = z_.head(D);
+    e.f = z_.tail(D);
+    y_.head(D) = e.N;
+    y_.tail(D) = -e.f;
+    e.qdd.noalias() = r0_ + C_ * y_;
+    for (Index i = 0; i < D; ++i) {
+      const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
+      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick;
+      const Scalar bq = C_.col(D + i).dot(e.qdd);
+      if (stuck) {
+        e.xdd[i] = bq;
+        e.Vdot[i] = 0;
+      } else {
+        e.xdd[i] = (e.f[i] - dmp.effective_stiffness() * x[x_offset() + i]) / dmp.effective_mass();
+        e.Vdot[i] = e.xdd[i] - bq - d_[i];
+      }
+    }
+    e.finite = e.qdd.allFinite() && z_.allFinite();
+  }
+
+  /// Picks consistent states for the dampers in `involved` (and any stuck damper whose capacity
+  /// the new states exceed): each is tried stuck first; those whose required stick force exceeds
+  /// mu_s N slip in the direction of the excess force. Bounded fixed-point iteration.
+  bool resolve(Mode& mode, std::vector<Index>& involved, Scalar t, State& x) {
+    const Mode before = mode;
+    for (Index i : involved)
+      if (has_stick_[static_cast<std::size_t>(i)]) mode[i] = ContactState::Stick;
+    bool consistent = false;
+    for (int iter = 0; iter < 4 * static_cast<int>(D_) + 4 && !consistent; ++iter) {
+      set_stuck_velocities(mode, x);
+      cache_valid_ = false;
+      const Evaluation& e = evaluate(mode, t, x);
+      consistent = true;
+      for (Index i = 0; i < D_; ++i) {
+        if (!has_stick_[static_cast<std::size_t>(i)] || mode[i] != ContactState::Stick) continue;
+        const ContactState next = detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [&](const auto& law) {
+          CoulombContact<std::decay_t<decltype(law)>> contact(law);
+          return contact.decide(ContactState::Stick, Scalar(0), e.N[i], e.f[i]);
+        });
+        if (next == ContactState::LiftOff) continue;  // reported by the lift-off guard / check
+        if (next != ContactState::Stick) {
+          mode[i] = next;
+          consistent = false;
+          if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
+          break;  // re-solve: one switch can relieve the others
+        }
+      }
+    }
+    cache_valid_ = false;
+    for (Index i = 0; i < D_; ++i)
+      if (before[i] != mode[i]) events_.push_back(ContactEvent{t, i, before[i], mode[i]});
+    return consistent;
+  }
+
+  /// Enforce V_i = 0 exactly for stuck dampers: x_i' = q'^T psi_u(X_i).
+  void set_stuck_velocities(const Mode& mode, State& x) {
+    if (options_.moving_contact)
+      for (Index i = 0; i < D_; ++i) evaluate_shapes(i, x[contact_offset() + i]);
+    const auto qd = x.segment(n_, n_);
+    for (Index i = 0; i < D_; ++i)
+      if (has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick)
+        x[xd_offset() + i] = qd.dot(C_.col(D_ + i));
+  }
+
+  TransitionAction stop(StopReason why, Index i, Scalar t, const State& x, const Mode& mode) {
+    stop_reason_ = why;
+    stop_damper_ = i;
+    const std::string at = " at t = " + detail::format_value(t);
+    const std::string who = "damper " + std::to_string(i);
+    switch (why) {
+      case StopReason::LiftOff: {
+        const Evaluation& e = evaluate(mode, t, x);
+        return TransitionAction::halt("lift-off: the normal force of " + who + " reached zero" + at +
+                                      " (N = " + detail::format_value(e.N[i]) +
+                                      "); the model assumes permanent contact");
+      }
+      case StopReason::LeftMember: {
+        const std::size_t iu = static_cast<std::size_t>(i);
+        const Scalar X = options_.moving_contact ? x[contact_offset() + i] : dampers_[iu].contact_coordinate;
+        return TransitionAction::halt(
+            "left member: the contact point of " + who + " reached the end of member " +
+            std::to_string(dampers_[iu].member) + at + " (X = " + detail::format_value(X) +
+            ", valid range [0, " + detail::format_value(shapes_[static_cast<std::size_t>(damper_shape_[iu])].length()) + "])");
+      }
+      case StopReason::NoConsistentState:
+        return TransitionAction::halt("no consistent stick/slip state found for " + who + at);
+      case StopReason::None: break;
+    }
+    return TransitionAction::halt("stopped" + at);
+  }
+
+  // Scene.
+  std::vector<Damper> dampers_;
+  std::vector<Load> loads_;
+  ModelOptions<Scalar> options_;
+  Index n_ = 0, D_ = 0;
+  Vector omega2_, two_zeta_omega_;
+  std::vector<Shapes> shapes_;
+  std::vector<Index> shape_members_;
+  std::vector<std::pair<Scalar, Scalar>> shape_direction_;  // member (cos, sin)
+  std::vector<Index> damper_shape_;
+  std::vector<bool> has_stick_;
+  std::vector<bool> inertial_;  // damper's normal force varies (vertical inertia)
+  Matrix load_psi_;
+
+  // Workspace of the solve (allocated once; the solve allocates nothing).
+  mutable std::vector<typename Shapes::Values> values_;
+  mutable std::vector<ElementCursor> cursors_;
+  mutable Matrix C_, dpsi_w_, ddpsi_w_, dpsi_u_, G_, S_;
+  mutable Vector rhs_, z_, y_, cr_, r0_, h_, d_;
+  mutable Eigen::PartialPivLU<Matrix> lu_;
+  mutable Evaluation eval_;
+  bool cache_valid_ = false;
+  Scalar cache_t_{};
+  Mode cache_mode_;
+  State cache_x_;
+
+  std::vector<ContactEvent> events_;
+  std::vector<Index> involved_;
+  StopReason stop_reason_ = StopReason::None;
+  Index stop_damper_ = -1;
+};
+
+}  // namespace stickslip

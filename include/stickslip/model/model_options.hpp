@@ -1,0 +1,30 @@
+#pragma once
+/// \file model_options.hpp
+/// \brief What a friction-damped scene models. Each switch costs nothing when off.
+
+#include "stickslip/model/normal_load.hpp"
+#include "stickslip/moving_load.hpp"
+
+namespace stickslip {
+
+/// Modelling switches of FrictionDampedSystem.
+template <class Scalar>
+struct ModelOptions {
+  /// Normal-load variation from the damper's vertical inertia (paper eqs 23-24) or constant N0.
+  NormalLoad normal_load = NormalLoad::Inertial;
+  /// The contact point moves along the member with the relative slip (moving load, paper eq 10),
+  /// or stays at its initial coordinate.
+  bool moving_contact = true;
+  /// With a moving contact: keep the convective terms of the damper's vertical acceleration
+  /// (2 q'^T psi_w' X' + q^T psi_w'' X'^2 + q^T psi_w' X'', paper eq 19).
+  bool convective_terms = true;
+  /// Watch the normal force and stop with a lift-off status when it reaches zero.
+  bool watch_lift_off = true;
+  /// Integrate the work and dissipation terms alongside the state for an energy audit.
+  bool energy_audit = true;
+  /// What happens when a contact point reaches a member end (component 3's policy): Throw stops
+  /// the run with a "left member" status; Extrapolate/Clamp continue with that approximation.
+  EndPolicy end_policy = EndPolicy::Throw;
+};
+
+}  // namespace stickslip

@@ -1,0 +1,81 @@
+#pragma once
+/// \file point_damper.hpp
+/// \brief A point-contact friction damper pressed against a member of a frame.
+
+#include "stickslip/contact.hpp"
+#include "stickslip/detail/validate.hpp"
+#include "stickslip/model/normal_load.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <utility>
+#include <variant>
+
+namespace stickslip {
+
+/// Any of the library's friction laws, chosen per damper at run time.
+template <class Scalar>
+using FrictionLawVariant = std::variant<CoulombLaw<Scalar>, StribeckLaw<Scalar>, RegularisedLaw<Scalar>>;
+
+/// A damper in point contact with a member (the paper's under-platform damper, Figs 3-4).
+///
+/// It slides along the member's local axis u, follows the member's transverse motion w, is held
+/// by a spring k to its own support along u, and is pressed against the member by the preload
+/// N0 (paper: N0 = F/2 = m r Omega^2 / 2, the centrifugal force shared by two blades). The share
+/// factor s scales the damper's inertia and spring in this blade's equations (paper eqs 11-14:
+/// s = 1/2, "a damper shared by two blades"): effective mass s m, effective spring s k.
+template <class Scalar, class Law = FrictionLawVariant<Scalar>>
+struct PointDamper {
+  /// Damper on `member` at contact coordinate X0 with mass m, spring k, preload N0 and `law`.
+  PointDamper(Eigen::Index member_, Scalar contact_coordinate_, Scalar mass_, Scalar stiffness_,
+              Scalar preload_, Law law_, Scalar share_ = Scalar(0.5))
+      : member(member_), contact_coordinate(contact_coordinate_), mass(mass_),
+        stiffness(stiffness_), preload(preload_), share(share_), law(std::move(law_)) {}
+
+  Eigen::Index member = 0;       ///< member the damper touches
+  Scalar contact_coordinate{};   ///< initial contact coordinate X0 along the member [m]
+  Scalar mass{};                 ///< damper mass m [kg] (> 0)
+  Scalar stiffness{};            ///< spring k to the damper's support along u [N/m] (>= 0)
+  Scalar preload{};              ///< N0, this blade's share of the normal load [N] (>= 0)
+  Scalar share = Scalar(0.5);    ///< share factor s in (0, 1]
+  Law law;                       ///< friction law
+  ContactState initial_state = ContactState::Stick;  ///< state requested at t0
+  /// +1: the damper presses the member along its local +w axis (90 degrees counter-clockwise
+  /// from u); -1: along -w (a damper on the other face).
+  Scalar side = Scalar(1);
+  /// This damper's normal force: Inertial (N = N0 - s m y'', paper eqs 23-24) or Constant
+  /// (N = N0). ModelOptions::normal_load = Constant overrides it for every damper.
+  NormalLoad normal_load = NormalLoad::Inertial;
+
+  /// Effective mass s m in this blade's equations (paper eqs 11-14).
+  Scalar effective_mass() const { return share * mass; }
+  /// Effective spring s k (paper eqs 11-12).
+  Scalar effective_stiffness() const { return share * stiffness; }
+
+  /// Damper whose preload comes from the centrifugal force: N0 = s m r Omega^2 (paper section 2).
+  static PointDamper centrifugal(Eigen::Index member, Scalar contact_coordinate, Scalar mass,
+                                 Scalar stiffness, Scalar radius, Scalar spin, Law law,
+                                 Scalar share = Scalar(0.5)) {
+    detail::require_non_negative("PointDamper::centrifugal", "radius", radius);
+    detail::require_finite("PointDamper::centrifugal", "spin", spin);
+    return PointDamper(member, contact_coordinate, mass, stiffness,
+                       share * mass * radius * spin * spin, std::move(law), share);
+  }
+
+  /// Throws std::invalid_argument naming the damper and the parameter.
+  void validate(Eigen::Index index) const {
+    const std::string where = "PointDamper[" + std::to_string(index) + "]";
+    detail::require_finite(where, "contact_coordinate", contact_coordinate);
+    detail::require_positive(where, "mass", mass);
+    detail::require_non_negative(where, "stiffness", stiffness);
+    detail::require_non_negative(where, "preload", preload);
+    detail::require_positive(where, "share", share);
+    if (share > Scalar(1)) detail::throw_invalid(where, "share must be <= 1", share);
+    if (!(side == Scalar(1) || side == Scalar(-1))) detail::throw_invalid(where, "side must be +1 or -1", side);
+    if (initial_state == ContactState::LiftOff)
+      detail::throw_invalid(where, "initial_state cannot be lift-off", "lift_off");
+  }
+};
+
+}  // namespace stickslip

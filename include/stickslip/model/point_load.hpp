@@ -1,0 +1,69 @@
+#pragma once
+/// \file point_load.hpp
+/// \brief External point loads on a member: harmonic or a user function of time.
+
+#include "stickslip/detail/validate.hpp"
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <functional>
+#include <string>
+
+namespace stickslip {
+
+/// Direction of a point load.
+enum class LoadDirection {
+  GlobalX,     ///< force along global X
+  GlobalY,     ///< force along global Y
+  Axial,       ///< force along the member's local u axis
+  Transverse,  ///< force along the member's local w axis
+  Moment       ///< moment about Z
+};
+
+/// A point load F(t) at coordinate `coordinate` of member `member` (the paper's F psi_w1(Y0)).
+/// F(t) = amplitude sin(omega t + phase) + offset, unless `time_function` is set, which then
+/// gives F(t) itself.
+template <class Scalar>
+struct PointLoad {
+  Eigen::Index member = 0;
+  Scalar coordinate{};  ///< position along the member [m]
+  LoadDirection direction = LoadDirection::GlobalX;
+  Scalar amplitude{};   ///< [N] or [N m]
+  Scalar omega{};       ///< [rad/s]
+  Scalar phase{};       ///< [rad]
+  Scalar offset{};      ///< constant part [N]
+  std::function<Scalar(Scalar)> time_function;  ///< optional F(t)
+
+  /// Value of F at time t.
+  Scalar value(Scalar t) const {
+    using std::sin;
+    if (time_function) return time_function(t);
+    return amplitude * sin(omega * t + phase) + offset;
+  }
+
+  /// Harmonic load F(t) = amplitude sin(omega t + phase).
+  static PointLoad harmonic(Eigen::Index member, Scalar coordinate, LoadDirection direction,
+                            Scalar amplitude, Scalar omega, Scalar phase = Scalar(0)) {
+    PointLoad p;
+    p.member = member;
+    p.coordinate = coordinate;
+    p.direction = direction;
+    p.amplitude = amplitude;
+    p.omega = omega;
+    p.phase = phase;
+    return p;
+  }
+
+  /// Throws std::invalid_argument naming the load and the parameter.
+  void validate(Eigen::Index index) const {
+    const std::string where = "PointLoad[" + std::to_string(index) + "]";
+    detail::require_finite(where, "coordinate", coordinate);
+    detail::require_finite(where, "amplitude", amplitude);
+    detail::require_finite(where, "omega", omega);
+    detail::require_finite(where, "phase", phase);
+    detail::require_finite(where, "offset", offset);
+  }
+};
+
+}  // namespace stickslip

@@ -1,0 +1,72 @@
+#pragma once
+// Small scenes shared by the model tests: a T-shaped blade/platform frame (the paper's geometry on
+// a coarse mesh) with two dampers under the platform, and helpers to read quantities back.
+#include <stickslip/stickslip.hpp>
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+namespace model_test {
+
+using namespace stickslip;
+using System = FrictionDampedSystem<double>;
+using Index = Eigen::Index;
+
+struct TScene {
+  FrameModel<double> frame;
+  Index blade = 0, platform = 0, root = 0, tip = 0;
+  ModalBasis<double> basis;
+};
+
+/// The paper's T-frame (L1 = 0.2, L2 = 0.04, steel section of section 3) on a coarse mesh.
+inline TScene make_t_frame(int modes = 6, int blade_elements = 8, int platform_elements = 4) {
+  TScene s;
+  const SectionProperties<double> sec{2.06e11, 7800.0, 6e-5, 2e-11};
+  s.root = s.frame.add_node(0.0, 0.0);
+  const Index left = s.frame.add_node(-0.02, 0.2), right = s.frame.add_node(0.02, 0.2);
+  s.platform = s.frame.add_member(left, right, sec, platform_elements);
+  s.tip = s.frame.member(s.platform).nodes[static_cast<std::size_t>(platform_elements / 2)];
+  s.blade = s.frame.add_member(s.root, s.tip, sec, blade_elements);
+  s.frame.clamp(s.root);
+  ModalOptions<double> mo;
+  mo.num_modes = modes;
+  s.basis = compute_modes(s.frame.assemble(), mo);
+  return s;
+}
+
+/// Two dampers at X = 0.01 and 0.03 on the platform with the paper's spring, share and friction.
+inline std::vector<PointDamper<double>> paper_dampers(const TScene& s, double preload,
+                                                      double mu_s = 0.35, double mu_k = 0.3,
+                                                      double k = 1e4) {
+  const double m = preload / (0.5 * 0.46 * 50.0 * 50.0);
+  std::vector<PointDamper<double>> d;
+  d.emplace_back(s.platform, 0.01, m, k, preload, CoulombLaw<double>(mu_s, mu_k), 0.5);
+  d.emplace_back(s.platform, 0.03, m, k, preload, CoulombLaw<double>(mu_s, mu_k), 0.5);
+  return d;
+}
+
+/// The paper's excitation: 20 sin(200 t) N along global X at 0.05 m above the root.
+inline std::vector<PointLoad<double>> paper_load(const TScene& s, double amplitude = 20.0) {
+  return {PointLoad<double>::harmonic(s.blade, 0.05, LoadDirection::GlobalX, amplitude, 200.0)};
+}
+
+/// A random state with modal amplitudes ~ typical of the blade (1e-4) and damper motion.
+inline System::State random_state(const System& sys, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  System::State x = sys.initial_state();
+  const Index n = sys.num_modes();
+  for (Index j = 0; j < n; ++j) {
+    x[j] = 1e-4 * u(rng);
+    x[n + j] = 1e-2 * u(rng);
+  }
+  for (Index i = 0; i < sys.num_dampers(); ++i) {
+    x[sys.x_offset() + i] = 1e-5 * u(rng);
+    x[sys.xd_offset() + i] = 1e-2 * u(rng);
+    if (sys.contact_offset() >= 0) x[sys.contact_offset() + i] += 1e-3 * u(rng);
+  }
+  return x;
+}
+
+}  // namespace model_test
