@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ode/ode_test_systems.hpp"
@@ -118,6 +120,121 @@ TEST(HybridStepperStatus, MaxStepsEndsTheRunWithItsStatus) {
   // 100 fixed steps of 1e-3 from t = 0 (no event before t = pi/6).
   EXPECT_NEAR(r.t, 0.1, 1e-12);
   EXPECT_EQ(r.stats.accepted_steps, 100);
+}
+
+}  // namespace
+
+namespace {
+
+struct HaltAfter {
+  using Scalar = double;
+  using State = Eigen::Vector2d;
+  using Mode = int;
+  BouncingBall ball;
+  int max_bounces = 3;
+  void rhs(const Mode& m, double t, const State& x, State& d) const { ball.rhs(m, t, x, d); }
+  Eigen::Index num_guards(const Mode&) const { return 1; }
+  void guards(const Mode& m, double t, const State& x, Eigen::VectorXd& g) const {
+    ball.guards(m, t, x, g);
+  }
+  stickslip::CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
+    return ball.guard_direction(m, i);
+  }
+  stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards& w, double t,
+                                         State& x) const {
+    ball.transition(m, w, t, x);
+    if (m >= max_bounces) return stickslip::TransitionAction::halt("enough bounces");
+    return stickslip::TransitionAction::proceed();
+  }
+};
+
+TEST(HybridStepperStatus, SystemCanHaltTheRunWithAReason) {
+  HaltAfter sys;
+  HybridStepper<HaltAfter> stepper(sys);
+  const auto r = stepper.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 100.0);
+  EXPECT_EQ(r.status, Status::StoppedBySystem);
+  EXPECT_EQ(r.mode, 3);
+  EXPECT_NEAR(r.t, sys.ball.impact_time(3, 1.0), 1e-10);  // closed form, as in the ball tests
+  EXPECT_NE(r.message.find("enough bounces"), std::string::npos) << r.message;
+  EXPECT_STREQ(to_string(r.status), "stopped_by_system");
+}
+
+TEST(HybridStepperStatus, ObserverCanStopTheRun) {
+  struct StopAfter : stickslip::NullObserver {
+    int steps = 0;
+    bool on_step(double, const Eigen::Vector2d&, const int&) { return ++steps < 5; }
+  } obs;
+  Oscillator osc;
+  StepperOptions<double> opt;
+  opt.fixed_step = 0.01;
+  HybridStepper<Oscillator, RungeKutta4> stepper(osc, opt);
+  const auto r = stepper.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 1.0, obs);
+  EXPECT_EQ(r.status, Status::StoppedByObserver);
+  EXPECT_NEAR(r.t, 0.05, 1e-15);
+  EXPECT_EQ(obs.steps, 5);
+}
+
+TEST(HybridStepperStatus, StepSizeUnderflowAtAFiniteTimeBlowUp) {
+  // x' = x^2 from x(0) = 1 blows up at t = 1: the error control shrinks the step below
+  // min_step * max(1, |t|) = 1e-14 before the state overflows.
+  using Riccati = stickslip::test::Riccati;
+  struct BlowUp : Riccati {
+    void rhs(const Mode&, double, const State& x, State& d) const { d[0] = x[0] * x[0]; }
+  } sys;
+  HybridStepper<BlowUp> stepper(sys);
+  const auto r = stepper.integrate(0, 0.0, BlowUp::State(1.0), 2.0);
+  ASSERT_EQ(r.status, Status::StepSizeUnderflow) << r.message;
+  // The numerical solution blows up where 1/x reaches 0; its relative error, accumulated under
+  // rtol = 1e-6, shifts that time by O(rtol) (measured 3e-7).
+  EXPECT_NEAR(r.t, 1.0, 1e-5);
+  EXPECT_NE(r.message.find("fell below min_step"), std::string::npos) << r.message;
+  EXPECT_GT(r.stats.rejected_steps, 0);
+}
+
+TEST(HybridStepperStatus, InvalidOptionsAndArgumentsThrowNamingTheParameter) {
+  Oscillator osc;
+  StepperOptions<double> opt;
+  opt.rtol = -1.0;
+  try {
+    HybridStepper<Oscillator> stepper(osc, opt);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("HybridStepper: options.rtol"), std::string::npos);
+  }
+  HybridStepper<Oscillator> stepper(osc);
+  EXPECT_THROW(stepper.integrate(0, 1.0, Eigen::Vector2d(1.0, 0.0), 0.5), std::invalid_argument);
+  EXPECT_THROW(stepper.integrate(0, 0.0, Eigen::Vector2d(NAN, 0.0), 1.0), std::invalid_argument);
+}
+
+TEST(HybridStepperObservers, SamplesAtAFixedRateThroughTheDenseOutput) {
+  // Samples at t = 0, 0.1, ..., 2 (21 of them) on cos(3 t), across events (x = 0 crossings,
+  // transition leaves the state alone) and independent of the steps taken.
+  struct Samples : stickslip::NullObserver {
+    std::vector<double> t, x;
+    long steps = 0;
+    bool on_sample(double ts, const Eigen::Vector2d& xs, const int&) {
+      t.push_back(ts);
+      x.push_back(xs[0]);
+      return true;
+    }
+    bool on_step(double, const Eigen::Vector2d&, const int&) { return ++steps > 0; }
+  } obs;
+  Oscillator osc;
+  StepperOptions<double> opt;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  opt.output_interval = 0.1;
+  HybridStepper<Oscillator> stepper(osc, opt);
+  const auto r = stepper.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 2.0, obs);
+  ASSERT_EQ(r.status, Status::Success) << r.message;
+  ASSERT_EQ(obs.t.size(), 21u);
+  for (std::size_t k = 0; k < obs.t.size(); ++k) {
+    EXPECT_NEAR(obs.t[k], 0.1 * static_cast<double>(k), 1e-15);
+    // Dense-output error ~ rtol; 1e-8 leaves room for the global error over 2 s.
+    EXPECT_NEAR(obs.x[k], std::cos(3.0 * obs.t[k]), 1e-8) << "t = " << obs.t[k];
+  }
+  EXPECT_EQ(obs.steps, r.stats.accepted_steps);
+  EXPECT_GT(r.stats.events, 0);
 }
 
 }  // namespace

@@ -1,0 +1,92 @@
+// No heap allocation per step: the number of allocations of a run does not grow with the number
+// of steps and events (global operator new is counted in this executable only).
+
+#include <stickslip/ode.hpp>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "ode/ode_test_systems.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+using stickslip::HybridStepper;
+using stickslip::StepperOptions;
+
+template <class Method, class System>
+long allocations_of_run(System& sys, const typename System::State& x0, double t_end,
+                        stickslip::EventLocation loc, long& steps, long& events) {
+  StepperOptions<double> opt;
+  opt.event_location = loc;
+  opt.fixed_step = 1e-3;
+  opt.output_interval = 0.01;
+  HybridStepper<System, Method> stepper(sys, opt);
+  stepper.integrate(0, 0.0, x0, 0.01);  // sizes the workspace
+  const long before = g_allocations.load();
+  const auto r = stepper.integrate(0, 0.0, x0, t_end);
+  const long count = g_allocations.load() - before;
+  EXPECT_EQ(r.status, stickslip::Status::Success) << r.message;
+  steps = r.stats.accepted_steps;
+  events = r.stats.events;
+  return count;
+}
+
+template <class Method>
+void expect_allocations_independent_of_run_length() {
+  stickslip::test::BouncingBall ball;  // fixed-size state (Vector2d)
+  ball.restitution = 0.9;
+  for (auto loc : {stickslip::EventLocation::DenseRootFinding, stickslip::EventLocation::Bisection}) {
+    long s1 = 0, e1 = 0, s2 = 0, e2 = 0;
+    const Eigen::Vector2d x0(1.0, 0.0);
+    const long short_run = allocations_of_run<Method>(ball, x0, 1.0, loc, s1, e1);
+    const long long_run = allocations_of_run<Method>(ball, x0, 8.0, loc, s2, e2);
+    EXPECT_GT(s2, 4 * s1);
+    EXPECT_GT(e2, 4 * e1);
+    EXPECT_EQ(short_run, long_run) << Method::name << ", steps " << s1 << " vs " << s2;
+  }
+}
+
+TEST(NoAllocationPerStep, RungeKutta4) { expect_allocations_independent_of_run_length<stickslip::RungeKutta4>(); }
+TEST(NoAllocationPerStep, DormandPrince54) {
+  expect_allocations_independent_of_run_length<stickslip::DormandPrince54>();
+}
+TEST(NoAllocationPerStep, Rosenbrock23) {
+  expect_allocations_independent_of_run_length<stickslip::Rosenbrock23>();
+}
+
+TEST(NoAllocationPerStep, DynamicStateAllocatesOnlyPerRun) {
+  // A dynamic-size linear system (4 states): the run's allocations (result, workspace reuse)
+  // do not depend on how many steps it takes.
+  stickslip::test::LinearSystem<Eigen::Dynamic> sys;
+  sys.a = Eigen::MatrixXd::Zero(4, 4);
+  sys.a.topRightCorner(2, 2).setIdentity();
+  sys.a.bottomLeftCorner(2, 2) = -4.0 * Eigen::Matrix2d::Identity();
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Ones(4);
+  long s1 = 0, e1 = 0, s2 = 0, e2 = 0;
+  const auto loc = stickslip::EventLocation::DenseRootFinding;
+  const long a1 = allocations_of_run<stickslip::Rosenbrock23>(sys, x0, 1.0, loc, s1, e1);
+  const long a2 = allocations_of_run<stickslip::Rosenbrock23>(sys, x0, 10.0, loc, s2, e2);
+  EXPECT_GT(s2, 4 * s1);
+  EXPECT_EQ(a1, a2);
+  const long b1 = allocations_of_run<stickslip::DormandPrince54>(sys, x0, 1.0, loc, s1, e1);
+  const long b2 = allocations_of_run<stickslip::DormandPrince54>(sys, x0, 10.0, loc, s2, e2);
+  EXPECT_GT(s2, 4 * s1);
+  EXPECT_EQ(b1, b2);
+}
+
+}  // namespace
