@@ -135,9 +135,12 @@ class CoulombContact {
   ContactState decide(ContactState from, Scalar v, Scalar N, Scalar f_stick_required) const {
     static_cast<void>(from);
     using std::abs;
-    detail::require_finite("CoulombContact::decide", "v", v);
-    detail::require_finite("CoulombContact::decide", "N", N);
-    detail::require_finite("CoulombContact::decide", "f_stick_required", f_stick_required);
+    using std::isfinite;
+    if (!(isfinite(v) && isfinite(N) && isfinite(f_stick_required))) {  // messages off the hot path
+      detail::require_finite("CoulombContact::decide", "v", v);
+      detail::require_finite("CoulombContact::decide", "N", N);
+      detail::require_finite("CoulombContact::decide", "f_stick_required", f_stick_required);
+    }
     if (!(N > Scalar(0))) return ContactState::LiftOff;
     if (abs(v) > velocity_tolerance_) return slip_state(v);
     if constexpr (has_stick_state) {
