@@ -23,6 +23,10 @@ struct AssembledFrame {
   DofMap dofs;             ///< free-DOF numbering
   std::uint64_t model_id = 0;  ///< FrameModel::id() of the model at assembly
   MassType mass_type = MassType::Consistent;
+  /// Number of zero-stiffness (rigid-body) modes K phi = 0, counted exactly from the topology and
+  /// supports by FrameModel::assemble; -1 when unknown (compute_modes then classifies by
+  /// ModalOptions::rigid_body_tolerance).
+  Eigen::Index num_rigid_body_modes = -1;
 
   Eigen::Index num_free() const noexcept { return dofs.num_free(); }
 };

@@ -13,6 +13,7 @@
 #include "stickslip/detail/validate.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -271,7 +273,58 @@ class FrameModel {
                                     "and without point mass / rotary inertia; constrain it)");
       }
     }
+    out.num_rigid_body_modes = count_rigid_body_modes();
     return out;
+  }
+
+  /// Number of rigid-body (zero-stiffness) modes: for each set of nodes connected by members,
+  /// 3 - rank of the supports (constrained DOFs and springs) acting on the three rigid motions
+  /// (X and Y translation, rotation) of that set. Cost O(num_nodes()).
+  Index count_rigid_body_modes() const {
+    // Connected components by union-find over the member node chains.
+    const std::size_t nn = positions_.size();
+    std::vector<std::size_t> parent(nn);
+    for (std::size_t i = 0; i < nn; ++i) parent[i] = i;
+    const auto find = [&parent](std::size_t i) {
+      while (parent[i] != i) i = parent[i] = parent[parent[i]];
+      return i;
+    };
+    for (const Member& m : members_)
+      for (Index node : m.nodes) parent[find(idx(node))] = find(idx(m.nodes.front()));
+    // Per component: a reference point and size, then the Gram matrix of the support rows
+    // (rigid motion X = a - c y, Y = b + c x, Rz = c in coordinates scaled by the size).
+    std::vector<Vector2> lo(nn, Vector2::Constant(std::numeric_limits<Scalar>::max()));
+    std::vector<Vector2> hi(nn, Vector2::Constant(std::numeric_limits<Scalar>::lowest()));
+    for (std::size_t i = 0; i < nn; ++i) {
+      const std::size_t r = find(i);
+      lo[r] = lo[r].cwiseMin(positions_[i]);
+      hi[r] = hi[r].cwiseMax(positions_[i]);
+    }
+    using Matrix3 = Eigen::Matrix<Scalar, 3, 3>;
+    std::vector<Matrix3> gram(nn, Matrix3::Zero());
+    for (std::size_t i = 0; i < nn; ++i) {
+      const std::size_t r = find(i);
+      const Scalar size = (hi[r] - lo[r]).norm();
+      const Vector2 p = size > Scalar(0) ? Vector2((positions_[i] - lo[r]) / size) : Vector2::Zero();
+      for (Index d = 0; d < 3; ++d) {
+        const std::size_t g = idx(global_dof(static_cast<Index>(i), static_cast<Dof>(d)));
+        if (!constrained_[g] && !(nodal_spring_[g] > Scalar(0))) continue;
+        Eigen::Matrix<Scalar, 3, 1> row;
+        if (d == 0) row << 1, 0, -p.y();
+        else if (d == 1) row << 0, 1, p.x();
+        else row << 0, 0, 1;
+        gram[r] += row * row.transpose();
+      }
+    }
+    Index rigid = 0;
+    for (std::size_t i = 0; i < nn; ++i) {
+      if (find(i) != i) continue;
+      const Eigen::SelfAdjointEigenSolver<Matrix3> es(gram[i], Eigen::EigenvaluesOnly);
+      const Scalar tol = Scalar(1e-10) * std::max(es.eigenvalues().maxCoeff(), Scalar(1));
+      for (Index k = 0; k < 3; ++k)
+        if (es.eigenvalues()(k) <= tol) ++rigid;
+    }
+    return rigid;
   }
 
  private:

@@ -64,8 +64,10 @@ RawModes<Scalar> sparse_modes(const AssembledFrame<Scalar>& frame, const ModalOp
   using std::sqrt;
   const Eigen::Index n = frame.num_free();
   LdltShiftInvert<Scalar> op(frame.stiffness, frame.mass);
-  // Automatic shift: the smallest sigma = -s (s = ladder of lambda_scale * eps^(...)) for which
-  // K - sigma M factorises as positive definite; see docs/modal.md.
+  // Automatic shift sigma = -s with s = rel * lambda_scale: the first rel of a ladder for which
+  // K - sigma M factorises with positive pivots. Without rigid-body modes K is positive definite
+  // and s starts far below any elastic eigenvalue (eps^2); otherwise s starts above the round-off
+  // level of the factorisation (100 eps). See docs/modal.md.
   Scalar sigma = options.shift;
   bool ok = false;
   if (!isnan(sigma)) {
@@ -75,10 +77,11 @@ RawModes<Scalar> sparse_modes(const AssembledFrame<Scalar>& frame, const ModalOp
       detail::throw_invalid("compute_modes", "options.shift does not make K - shift*M positive definite", sigma);
   } else {
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
-    for (Scalar rel : {eps * eps, eps * Scalar(16), sqrt(eps), Scalar(1e-3)}) {
+    Scalar rel = frame.num_rigid_body_modes == 0 ? eps * eps : Scalar(100) * eps;
+    for (int attempt = 0; attempt < 5 && !ok; ++attempt, rel *= Scalar(1000)) {
       sigma = -rel * lambda_scale;
       ++report.factorizations;
-      if ((ok = op.try_factorize(sigma))) break;
+      ok = op.try_factorize(sigma);
     }
     if (!ok) throw std::runtime_error("compute_modes: no negative shift made K - sigma M positive definite");
   }
@@ -109,7 +112,8 @@ RawModes<Scalar> sparse_modes(const AssembledFrame<Scalar>& frame, const ModalOp
 ///
 /// At most options.num_modes modes, dropping those with omega > options.max_omega. Modes are
 /// sorted ascending and mass-normalised (Phi^T M Phi = I). Eigenvalues with
-/// lambda <= options.rigid_body_tolerance * trace(K)/trace(M) are rigid-body modes: omega = 0.
+/// The first frame.num_rigid_body_modes modes are rigid-body modes (omega = 0); when that count
+/// is unknown (-1), those with lambda <= options.rigid_body_tolerance * trace(K)/trace(M) are.
 /// Dense solver: Eigen::GeneralizedSelfAdjointEigenSolver. Sparse solver: Spectra
 /// SymGEigsShiftSolver (shift-and-invert Lanczos) about a negative shift sigma, so K - sigma M is
 /// positive definite even with rigid-body modes (docs/modal.md).
@@ -155,14 +159,16 @@ ModalBasis<Scalar> compute_modes(const AssembledFrame<Scalar>& frame,
   std::sort(order.begin(), order.end(),
             [&](Eigen::Index a, Eigen::Index b) { return raw.lambda(a) < raw.lambda(b); });
   const Scalar rigid_limit = options.rigid_body_tolerance * lambda_scale;
+  const Eigen::Index known_rigid = frame.num_rigid_body_modes;
   Eigen::Index keep = 0, rigid = 0;
   typename ModalBasis<Scalar>::Vector omega(found);
   for (Eigen::Index i = 0; i < found; ++i) {
     const Scalar lambda = raw.lambda(order[static_cast<std::size_t>(i)]);
+    const bool is_rigid = known_rigid >= 0 ? i < known_rigid : lambda <= rigid_limit;
     using std::sqrt;
-    const Scalar w = lambda <= rigid_limit ? Scalar(0) : sqrt(lambda);
+    const Scalar w = is_rigid ? Scalar(0) : sqrt(std::max(lambda, Scalar(0)));
     if (w > options.max_omega) break;
-    if (w == Scalar(0)) ++rigid;
+    if (is_rigid) ++rigid;
     omega(keep++) = w;
   }
   if (keep == 0)

@@ -45,8 +45,8 @@ struct ModalOptions {
   Index ncv = 0;                 ///< Lanczos basis size of the sparse solver; 0 = automatic
   Scalar tolerance = Scalar(1e-10);  ///< relative Ritz-value tolerance of the sparse solver
   Index max_iterations = 1000;   ///< restarts allowed to the sparse solver
-  /// A mode with omega^2 <= rigid_body_tolerance * trace(K)/trace(M) is a rigid-body mode:
-  /// its omega is set to 0.
+  /// Used only when AssembledFrame::num_rigid_body_modes is unknown (-1): a mode with
+  /// omega^2 <= rigid_body_tolerance * trace(K)/trace(M) is then a rigid-body mode (omega = 0).
   Scalar rigid_body_tolerance = Scalar(1e-12);
 
   /// \throws std::invalid_argument naming `where` and the offending field
