@@ -103,7 +103,7 @@ TEST(HeldMass, LoadExactlyAtThresholdStaysStuck) {
   p.force_bias = -0.5 * 10.0;  // f_required = -F = mu_s N exactly
   Sys sys(p, stickslip::CoulombContact<Law>(Law(0.5, 0.3)));
   const Eigen::Vector4d x0(0.25, 0.0, 0.0, 0.0);
-  Eigen::VectorXd g(2);
+  Eigen::VectorXd g(sys.num_guards(S::Stick));
   sys.guards(S::Stick, 0.0, x0, g);
   ASSERT_EQ(g[0], 0.0);
   ASSERT_EQ(sys.consistent_mode(0.0, x0), S::Stick);
