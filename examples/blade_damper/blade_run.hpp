@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,15 @@ struct RunSettings {
   double duration = 20.0;          ///< [s]
   double sample_interval = 1e-4;   ///< output rate through the dense output [s]
   double record_window = 1.0;      ///< full records over the last `record_window` seconds [s]
-  double energy_t1 = 19.0, energy_t2 = 19.5;  ///< the paper's E window [s] (clipped to the run)
+  /// The paper's E window [t1, t2] = [19, 19.5] s for its 20 s runs; shorter runs use the same
+  /// position relative to the end, [T - 1, T - 0.5].
+  double energy_t1 = 19.0, energy_t2 = 19.5;
+  void fit_energy_window() {
+    if (duration < energy_t2) {
+      energy_t2 = std::max(0.0, duration - 0.5);
+      energy_t1 = std::max(0.0, duration - 1.0);
+    }
+  }
   stickslip::RunOptions<double> run{};
 };
 
@@ -35,7 +44,9 @@ struct Sample {
 struct DamperRegime {
   double stick_fraction = 0;          ///< fraction of samples stuck
   double transitions_per_period = 0;  ///< contact switches per excitation period
-  std::string regime;                 ///< "gross slip", "stick-slip" or "stick"
+  /// "gross slip" (stuck less than 5 % of the time: at most brief stops at velocity reversals),
+  /// "stick" (stuck more than 99.9 % of the time) or "stick-slip" in between.
+  std::string regime;
 };
 
 /// Everything one run produces.
@@ -51,7 +62,7 @@ struct RunRecord {
   double energy_density = 0;           ///< E = mean of x_tip^2 over [t1, t2] (paper section 3.4)
   double tip_max = 0, tip_rms = 0;     ///< over the record window
   DamperRegime regime[2];
-  std::string overall_regime;
+  std::string overall_regime;         ///< common regime, or why the run stopped
   double energy_residual = 0;          ///< final energy-audit residual [J]
   double energy_scale = 0;             ///< largest |term| of the audit, for a relative measure [J]
   std::vector<stickslip::FrictionDampedSystem<double>::ContactEvent> events;  ///< in the window
@@ -75,8 +86,7 @@ class Recorder : public stickslip::NullObserver {
       record_.tip_x.push_back(tip);
       next_tip_ += 1e-3;
     }
-    const double t1 = std::min(settings_.energy_t1, settings_.duration);
-    const double t2 = std::min(settings_.energy_t2, settings_.duration);
+    const double t1 = settings_.energy_t1, t2 = settings_.energy_t2;
     if (t >= t1 - 1e-12 && t <= t2 + 1e-12) {
       if (have_prev_ && prev_t_ >= t1 - 1e-12)
         energy_integral_ += 0.5 * (t - prev_t_) * (tip * tip + prev_tip_ * prev_tip_);
@@ -149,9 +159,9 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
     rec.energy_scale = std::max({std::abs(b.mechanical - E0), std::abs(b.external_work),
                                  std::abs(b.friction_dissipation), std::abs(b.viscous_dissipation)});
   }
-  const double t1 = std::min(settings.energy_t1, settings.duration);
-  const double t2 = std::min(settings.energy_t2, settings.duration);
-  rec.energy_density = t2 > t1 ? recorder.energy_integral() / (t2 - t1) : 0.0;
+  const double t1 = settings.energy_t1, t2 = settings.energy_t2;
+  rec.energy_density = (t2 > t1 && result.t >= t2) ? recorder.energy_integral() / (t2 - t1)
+                                                    : std::numeric_limits<double>::quiet_NaN();
 
   // Window statistics.
   const double tw = settings.duration - settings.record_window;
@@ -177,12 +187,16 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
     DamperRegime& r = rec.regime[i];
     r.stick_fraction = stuck[i] / count;
     r.transitions_per_period = static_cast<double>(switches[i]) / periods;
-    r.regime = r.stick_fraction >= 0.999 ? "stick" : (r.stick_fraction <= 0.001 ? "gross slip" : "stick-slip");
+    r.regime = r.stick_fraction >= 0.999 ? "stick" : (r.stick_fraction < 0.05 ? "gross slip" : "stick-slip");
   }
   rec.overall_regime = rec.regime[0].regime == rec.regime[1].regime
                            ? rec.regime[0].regime
                            : rec.regime[0].regime + " / " + rec.regime[1].regime;
-  if (result.status != Status::Success) rec.overall_regime = "run stopped";
+  if (result.status != Status::Success) {
+    using Stop = BladeScene::System::StopReason;
+    const Stop why = sys.stop_reason();
+    rec.overall_regime = why == Stop::LiftOff ? "lift-off" : why == Stop::LeftMember ? "left platform" : "run stopped";
+  }
   return rec;
 }
 

@@ -38,6 +38,7 @@ struct Cli {
   bool sweep = false;
   double sweep_lo = 0.5, sweep_hi = 40.0;
   int sweep_count = 32;
+  bool sweep_log = true;
   double sweep_duration = -1;  // < 0: same as duration
   int threads = 0;
   std::string out = "out";
@@ -46,10 +47,12 @@ struct Cli {
 const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
 
 Usage: blade_damper [options]
-  --demo                 the main job: preloads 1, 12, 26 N and a 32-point preload sweep
+  --demo                 the main job: preloads 1, 12, 26 N and a 32-point sweep 0.5..40 N
   --preload N0           one run at preload N0 [N] (repeatable)
   --preloads a,b,...     runs at these preloads [N]
-  --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel
+  --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel,
+                         log-spaced preloads (linear with --sweep-linear)
+  --sweep-linear         linearly spaced sweep preloads
   --sweep-duration T     duration of each sweep run [s] (default: --duration)
   --duration T           simulated time [s] (default 20)
   --modes n              retained modes (default 6)
@@ -58,12 +61,14 @@ Usage: blade_damper [options]
   --y0 Y                 excitation point above the root [m] (default 0.05)
   --damping z            modal damping ratio of every mode (default 0)
   --integrator name      rk4 | dopri5 | rosenbrock23 (default dopri5)
-  --rtol r --atol a      tolerances of the adaptive integrators (default 1e-8, 1e-12)
+  --rtol r --atol a      tolerances of the adaptive integrators (default 1e-7, 1e-10)
   --dt h                 RK4 step [s] (default 1e-4, the paper's)
   --events name          root | bisection (event location; default root)
   --constant-normal-load N = N0 (no damper vertical inertia)
   --fixed-contact        contact points do not move along the platform
   --regularised v_eps    tanh friction with mu_k and this velocity scale [m/s]
+  --beyond-ends          continue the platform's end elements beyond its ends (extrapolated
+                         shapes) instead of stopping when a contact reaches an end
   --threads n            worker threads of the sweep (default: all cores)
   --out DIR              output folder (default out)
   --help                 this text
@@ -79,8 +84,8 @@ std::vector<double> parse_list(const std::string& s) {
 
 Cli parse(int argc, char** argv) {
   Cli c;
-  c.settings.run.stepper.rtol = 1e-8;
-  c.settings.run.stepper.atol = 1e-12;
+  c.settings.run.stepper.rtol = 1e-7;
+  c.settings.run.stepper.atol = 1e-10;
   c.settings.run.stepper.event_time_tolerance = 1e-12;
   auto need = [&](int& i) -> std::string {
     if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
@@ -101,9 +106,11 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--sweep") {
       const std::string s = need(i);
       if (std::sscanf(s.c_str(), "%lf:%lf:%d", &c.sweep_lo, &c.sweep_hi, &c.sweep_count) != 3 ||
-          c.sweep_count < 2 || !(c.sweep_hi > c.sweep_lo))
-        throw std::invalid_argument("--sweep expects lo:hi:count with hi > lo and count >= 2");
+          c.sweep_count < 2 || !(c.sweep_hi > c.sweep_lo) || !(c.sweep_lo > 0))
+        throw std::invalid_argument("--sweep expects lo:hi:count with 0 < lo < hi and count >= 2");
       c.sweep = true;
+    } else if (a == "--sweep-linear") {
+      c.sweep_log = false;
     } else if (a == "--sweep-duration") {
       c.sweep_duration = std::stod(need(i));
     } else if (a == "--duration") {
@@ -135,6 +142,8 @@ Cli parse(int argc, char** argv) {
       c.params.model.normal_load = NormalLoad::Constant;
     } else if (a == "--fixed-contact") {
       c.params.model.moving_contact = false;
+    } else if (a == "--beyond-ends") {
+      c.params.model.end_policy = EndPolicy::Extrapolate;
     } else if (a == "--regularised") {
       c.params.regularised_v_eps = std::stod(need(i));
     } else if (a == "--threads") {
@@ -150,6 +159,7 @@ Cli parse(int argc, char** argv) {
     throw std::invalid_argument("--platform-elements must be even (the blade tip is the platform's middle node)");
   if (c.preloads.empty() && !c.sweep) c.preloads = {12.0};
   c.settings.record_window = std::min(1.0, c.settings.duration);
+  c.settings.fit_energy_window();
   return c;
 }
 
@@ -158,6 +168,8 @@ std::string fmt(double v) {
   std::snprintf(b, sizeof b, "%.10g", v);
   return b;
 }
+/// A JSON number (null when not finite, e.g. E of a run that stopped before its window).
+std::string jnum(double v) { return std::isfinite(v) ? fmt(v) : "null"; }
 std::string tag(double preload) {
   char b[64];
   std::snprintf(b, sizeof b, "N0_%g", preload);
@@ -248,23 +260,23 @@ void write_run(const fs::path& dir, const blade::RunRecord& r, const Frequencies
     }
   }
   std::ofstream o(dir / ("summary_" + t + ".json"));
-  o << "{\n  \"preload_N\": " << fmt(r.preload) << ",\n  \"damper_mass_kg\": " << fmt(p.damper_mass())
+  o << "{\n  \"preload_N\": " << jnum(r.preload) << ",\n  \"damper_mass_kg\": " << jnum(p.damper_mass())
     << ",\n  \"status\": \"" << to_string(r.status) << "\",\n  \"message\": \"" << r.message
-    << "\",\n  \"t_end\": " << fmt(r.t_end) << ",\n  \"regime\": \"" << r.overall_regime << "\",\n  \"dampers\": [";
+    << "\",\n  \"t_end\": " << jnum(r.t_end) << ",\n  \"regime\": \"" << r.overall_regime << "\",\n  \"dampers\": [";
   for (int i = 0; i < 2; ++i)
     o << (i ? ", " : "") << "{\"regime\": \"" << r.regime[i].regime << "\", \"stick_fraction\": "
-      << fmt(r.regime[i].stick_fraction) << ", \"transitions_per_period\": "
-      << fmt(r.regime[i].transitions_per_period) << "}";
-  o << "],\n  \"tip_amplitude_max_m\": " << fmt(r.tip_max) << ",\n  \"tip_rms_m\": " << fmt(r.tip_rms)
-    << ",\n  \"energy_density_m2\": " << fmt(r.energy_density) << ",\n  \"energy_window_s\": ["
-    << fmt(s.energy_t1) << ", " << fmt(s.energy_t2) << "],\n  \"energy_audit_residual_J\": "
-    << fmt(r.energy_residual) << ",\n  \"energy_audit_scale_J\": " << fmt(r.energy_scale)
+      << jnum(r.regime[i].stick_fraction) << ", \"transitions_per_period\": "
+      << jnum(r.regime[i].transitions_per_period) << "}";
+  o << "],\n  \"tip_amplitude_max_m\": " << jnum(r.tip_max) << ",\n  \"tip_rms_m\": " << jnum(r.tip_rms)
+    << ",\n  \"energy_density_m2\": " << jnum(r.energy_density) << ",\n  \"energy_window_s\": ["
+    << jnum(s.energy_t1) << ", " << jnum(s.energy_t2) << "],\n  \"energy_audit_residual_J\": "
+    << jnum(r.energy_residual) << ",\n  \"energy_audit_scale_J\": " << jnum(r.energy_scale)
     << ",\n  \"natural_frequencies_frame_hz\": [";
-  for (std::size_t k = 0; k < fr.frame.size(); ++k) o << (k ? ", " : "") << fmt(fr.frame[k]);
+  for (std::size_t k = 0; k < fr.frame.size(); ++k) o << (k ? ", " : "") << jnum(fr.frame[k]);
   o << "],\n  \"natural_frequencies_all_stuck_hz\": [";
-  for (std::size_t k = 0; k < fr.stuck.size(); ++k) o << (k ? ", " : "") << fmt(fr.stuck[k]);
-  o << "],\n  \"integrator\": \"" << to_string(s.run.integrator) << "\",\n  \"rtol\": " << fmt(s.run.stepper.rtol)
-    << ",\n  \"atol\": " << fmt(s.run.stepper.atol) << ",\n  \"cpu_seconds\": " << fmt(r.cpu_seconds)
+  for (std::size_t k = 0; k < fr.stuck.size(); ++k) o << (k ? ", " : "") << jnum(fr.stuck[k]);
+  o << "],\n  \"integrator\": \"" << to_string(s.run.integrator) << "\",\n  \"rtol\": " << jnum(s.run.stepper.rtol)
+    << ",\n  \"atol\": " << jnum(s.run.stepper.atol) << ",\n  \"cpu_seconds\": " << jnum(r.cpu_seconds)
     << ",\n  \"stats\": {\"accepted_steps\": " << r.stats.accepted_steps
     << ", \"rejected_steps\": " << r.stats.rejected_steps << ", \"rhs_evaluations\": " << r.stats.rhs_evaluations
     << ", \"jacobian_evaluations\": " << r.stats.jacobian_evaluations << ", \"events\": " << r.stats.events
@@ -287,6 +299,9 @@ blade::RunRecord run_preload(const Cli& c, double preload, double duration, Freq
   blade::RunSettings s = c.settings;
   s.duration = duration;
   s.record_window = std::min(1.0, duration);
+  s.energy_t1 = 19.0;
+  s.energy_t2 = 19.5;
+  s.fit_energy_window();
   blade::BladeScene scene = blade::make_blade_scene(p);
   if (fr_out) *fr_out = frequencies(scene);
   return blade::run_scene(scene, s);
@@ -324,8 +339,11 @@ int main(int argc, char** argv) {
     if (c.sweep) {
       const double duration = c.sweep_duration > 0 ? c.sweep_duration : c.settings.duration;
       std::vector<double> preloads(static_cast<std::size_t>(c.sweep_count));
-      for (int k = 0; k < c.sweep_count; ++k)
-        preloads[static_cast<std::size_t>(k)] = c.sweep_lo + (c.sweep_hi - c.sweep_lo) * k / (c.sweep_count - 1);
+      for (int k = 0; k < c.sweep_count; ++k) {
+        const double s = double(k) / double(c.sweep_count - 1);
+        preloads[static_cast<std::size_t>(k)] =
+            c.sweep_log ? c.sweep_lo * std::pow(c.sweep_hi / c.sweep_lo, s) : c.sweep_lo + (c.sweep_hi - c.sweep_lo) * s;
+      }
       std::vector<blade::RunRecord> results(preloads.size());
       std::atomic<std::size_t> next{0}, done{0};
       std::mutex print_mutex;
@@ -348,8 +366,8 @@ int main(int argc, char** argv) {
       std::printf("\n");
       std::size_t best = 0;
       for (std::size_t k = 0; k < results.size(); ++k)
-        if (results[k].status == Status::Success &&
-            (results[best].status != Status::Success || results[k].energy_density < results[best].energy_density))
+        if (std::isfinite(results[k].energy_density) &&
+            (!std::isfinite(results[best].energy_density) || results[k].energy_density < results[best].energy_density))
           best = k;
       std::ofstream o(out / "sweep.csv");
       o << "preload_N,energy_density_m2,regime,stick_fraction_1,stick_fraction_2,transitions_per_period_1,"
@@ -362,8 +380,8 @@ int main(int argc, char** argv) {
           << r.stats.rhs_evaluations << ',' << r.total_events << '\n';
       // Regime map: contiguous preload ranges with the same regime.
       std::ofstream j(out / "sweep.json");
-      j << "{\n  \"duration_s\": " << fmt(duration) << ",\n  \"optimum\": {\"preload_N\": "
-        << fmt(results[best].preload) << ", \"energy_density_m2\": " << fmt(results[best].energy_density)
+      j << "{\n  \"duration_s\": " << jnum(duration) << ",\n  \"optimum\": {\"preload_N\": "
+        << jnum(results[best].preload) << ", \"energy_density_m2\": " << jnum(results[best].energy_density)
         << ", \"regime\": \"" << results[best].overall_regime << "\"},\n  \"regime_map\": [";
       std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\nregime map:\n", results[best].preload,
                   results[best].energy_density, results[best].overall_regime.c_str());
@@ -372,7 +390,7 @@ int main(int argc, char** argv) {
       for (std::size_t k = 1; k <= results.size(); ++k) {
         if (k == results.size() || results[k].overall_regime != results[start].overall_regime) {
           j << (first ? "" : ", ") << "{\"regime\": \"" << results[start].overall_regime
-            << "\", \"from_N\": " << fmt(results[start].preload) << ", \"to_N\": " << fmt(results[k - 1].preload) << "}";
+            << "\", \"from_N\": " << jnum(results[start].preload) << ", \"to_N\": " << jnum(results[k - 1].preload) << "}";
           std::printf("  %6.2f .. %6.2f N: %s\n", results[start].preload, results[k - 1].preload,
                       results[start].overall_regime.c_str());
           first = false;

@@ -117,14 +117,20 @@ def plot_sweep(out):
     colours = {"gross slip": "tab:red", "stick-slip": "tab:orange", "stick": "tab:blue"}
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.plot(s["preload_N"], s["energy_density_m2"], "-", color="0.6", lw=1)
+    stopped = [p for p, r in zip(s["preload_N"], s["regime"]) if r in ("lift-off", "left platform", "run stopped")]
+    for p in stopped:
+        ax.axvline(p, color="tab:gray", alpha=0.3, lw=6)
+    if stopped:
+        ax.plot([], [], color="tab:gray", alpha=0.3, lw=6, label="run stopped (lift-off / left platform)")
     for regime, colour in colours.items():
         xs = [p for p, r in zip(s["preload_N"], s["regime"]) if r == regime]
         ys = [e for e, r in zip(s["energy_density_m2"], s["regime"]) if r == regime]
         if xs:
             ax.plot(xs, ys, "o", color=colour, label=regime)
-    others = [(p, e) for p, e, r in zip(s["preload_N"], s["energy_density_m2"], s["regime"]) if r not in colours]
+    others = [(p, e) for p, e, r in zip(s["preload_N"], s["energy_density_m2"], s["regime"])
+              if r not in colours and p not in stopped]
     if others:
-        ax.plot([p for p, _ in others], [e for _, e in others], "x", color="k", label="mixed / stopped")
+        ax.plot([p for p, _ in others], [e for _, e in others], "x", color="k", label="mixed regimes")
     ax.set_xlabel("preload N0 [N]")
     ax.set_ylabel("normalised energy density E [m^2]")
     ax.set_yscale("log")
