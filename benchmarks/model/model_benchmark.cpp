@@ -1,0 +1,262 @@
+// Micro-benchmarks of the composition layer (docs/performance.md, "Part A"):
+//  * one right-hand side of FrictionDampedSystem vs the bare modal right-hand side
+//    q'' = -omega^2 q + sum_i (N_i psi_w(X_i) - f_i psi_u(X_i)) with the shapes evaluated at the
+//    D moving contact points, for n = 6, 24, 96 modes and D = 2, 8, 32 dampers (all slipping /
+//    all stuck); the ratio composed / bare is formed from the same run's JSON
+//    (benchmarks/model/micro_table.py);
+//  * one integrator step (RK4, DOPRI 5(4), Rosenbrock 2(3)) of the default blade scene;
+//  * one located event (root finding vs bisection) and the same window without an event;
+//  * 20 s of the default scene at N0 = 1, 12, 26 N (Iterations(1)).
+#include "blade_damper/blade_run.hpp"
+#include "blade_damper/blade_scene.hpp"
+
+#include <benchmark/benchmark.h>
+#include <stickslip/stickslip.hpp>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace {
+
+using namespace stickslip;
+using Index = Eigen::Index;
+using System = FrictionDampedSystem<double>;
+
+// ---- right-hand side: composed vs bare ----------------------------------------------------------
+
+/// An L-shaped steel frame (column and beam of 0.2 m, 40 elements each: 240 free DOFs) clamped at
+/// its foot; the dampers are spread evenly along the beam.
+struct RhsFrame {
+  FrameModel<double> frame;
+  Index member = 0;
+  ModalBasis<double> basis;
+  std::vector<double> X;
+};
+
+RhsFrame make_frame(Index n, Index D) {
+  RhsFrame s;
+  const SectionProperties<double> section{2.06e11, 7800.0, 6e-5, 2e-11};
+  const Index foot = s.frame.add_node(0.0, 0.0), corner = s.frame.add_node(0.0, 0.2), end = s.frame.add_node(0.2, 0.2);
+  s.frame.add_member(foot, corner, section, 40);
+  s.member = s.frame.add_member(corner, end, section, 40);
+  s.frame.clamp(foot);
+  ModalOptions<double> mo;
+  mo.num_modes = n;
+  s.basis = compute_modes(s.frame.assemble(), mo);
+  for (Index i = 0; i < D; ++i) s.X.push_back(0.2 * (static_cast<double>(i) + 0.5) / static_cast<double>(D));
+  return s;
+}
+
+/// Random modal state (fixed seed 7) with sliding velocities of alternating sign.
+Eigen::VectorXd random_modal_state(Index n) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd qqd(2 * n);
+  for (Index k = 0; k < n; ++k) {
+    qqd[k] = 1e-5 * u(rng);
+    qqd[n + k] = 1e-3 * u(rng);
+  }
+  return qqd;
+}
+
+void BM_RhsComposed(benchmark::State& st) {
+  const Index n = st.range(0), D = st.range(1);
+  const bool stuck = st.range(2) != 0;
+  RhsFrame f = make_frame(n, D);
+  std::vector<PointDamper<double>> dampers;
+  for (Index i = 0; i < D; ++i)
+    dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3));
+  System sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
+  System::State x = sys.initial_state();
+  x.head(2 * n) = random_modal_state(n);
+  System::Mode mode(D);
+  for (Index i = 0; i < D; ++i) {
+    const double sign = i % 2 == 0 ? 1.0 : -1.0;
+    const double follow = x.segment(n, n).dot(sys.point_shape(f.member, f.X[static_cast<std::size_t>(i)], LoadDirection::Axial));
+    x[sys.xd_offset() + i] = follow + (stuck ? 0.0 : 0.01 * sign);
+    x[sys.x_offset() + i] = 1e-5 * sign;
+    mode[i] = stuck ? ContactState::Stick : (sign > 0 ? ContactState::SlipPositive : ContactState::SlipNegative);
+  }
+  System::State dx(x.size());
+  double t = 0;
+  for (auto _ : st) {
+    t += 1e-9;  // a new time defeats the system's evaluation cache, as every integrator stage does
+    sys.rhs(mode, t, x, dx);
+    benchmark::DoNotOptimize(dx.data());
+    benchmark::ClobberMemory();
+  }
+  st.SetLabel(stuck ? "stuck" : "slipping");
+}
+
+/// The bare modal right-hand side with the same moving-shape evaluations and no contact algebra:
+/// q'' = -omega^2 q + sum_i (N_i psi_w(X_i) - f_i psi_u(X_i)), N and f given.
+void BM_RhsBare(benchmark::State& st) {
+  const Index n = st.range(0), D = st.range(1);
+  RhsFrame f = make_frame(n, D);
+  const MemberShapes<double> shapes(f.frame, f.member, f.basis, EndPolicy::Extrapolate);
+  std::vector<ShapeValues<double>> values(static_cast<std::size_t>(D), ShapeValues<double>(n));
+  std::vector<ElementCursor> cursors(static_cast<std::size_t>(D));
+  const Eigen::VectorXd omega2 = f.basis.omega().array().square().matrix();
+  Eigen::VectorXd x(2 * n + D), dx(2 * n);
+  x.head(2 * n) = random_modal_state(n);
+  for (Index i = 0; i < D; ++i) x[2 * n + i] = f.X[static_cast<std::size_t>(i)];
+  const Eigen::VectorXd N = Eigen::VectorXd::Constant(D, 10.0), fr = Eigen::VectorXd::Constant(D, 3.0);
+  for (auto _ : st) {
+    dx.head(n) = x.segment(n, n);
+    dx.tail(n).noalias() = -omega2.cwiseProduct(x.head(n));
+    for (Index i = 0; i < D; ++i) {
+      auto& v = values[static_cast<std::size_t>(i)];
+      shapes.evaluate(x[2 * n + i], v, cursors[static_cast<std::size_t>(i)]);
+      dx.tail(n).noalias() += N[i] * v.psi_w - fr[i] * v.psi_u;
+    }
+    benchmark::DoNotOptimize(dx.data());
+    benchmark::ClobberMemory();
+  }
+}
+
+BENCHMARK(BM_RhsBare)->ArgsProduct({{6, 24, 96}, {2, 8, 32}});
+BENCHMARK(BM_RhsComposed)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}});
+
+// ---- the default blade scene: one step, one located event ---------------------------------------
+
+/// The default scene at N0 = 2.6 N (stick-slip with this model), a state inside the run, and a
+/// short window around one isolated contact switch.
+struct EventSetup {
+  blade::BladeScene scene;
+  System::State x_mid;       ///< state at t_mid (for the step benchmarks)
+  System::Mode mode_mid;
+  double t_mid = 0.1;
+  double t_event = 0;        ///< an isolated switch
+  double t_start = 0, t_control = 0;  ///< window starts: [t, t + 1e-4] with / without the switch
+  System::State x_start, x_control;
+  System::Mode mode_start, mode_control;
+};
+
+const EventSetup& setup() {
+  static EventSetup s = [] {
+    EventSetup e;
+    blade::BladeParameters p;
+    p.preload = 2.6;
+    e.scene = blade::make_blade_scene(p);
+    System& sys = *e.scene.system;
+    RunOptions<double> run;
+    run.stepper.rtol = 1e-10;
+    run.stepper.atol = 1e-14;
+    NullObserver none;
+    auto run_to = [&](double t_end, System::State& x, System::Mode& mode) {
+      sys.clear_events();
+      System::State x0 = sys.initial_state();
+      System::Mode m0 = sys.requested_mode();
+      sys.make_consistent(m0, 0.0, x0);
+      const auto r = simulate(sys, m0, 0.0, x0, t_end, run, none);
+      x = r.x;
+      mode = r.mode;
+    };
+    run_to(0.3, e.x_mid, e.mode_mid);
+    std::vector<double> times;
+    for (const auto& ev : sys.events()) times.push_back(ev.t);
+    for (double te : times) {
+      if (te < e.t_mid) continue;
+      bool isolated = true;
+      for (double o : times)
+        if (std::abs(o - te) > 1e-9 && o > te - 4e-4 && o < te + 1e-4) isolated = false;
+      if (isolated) {
+        e.t_event = te;
+        break;
+      }
+    }
+    e.t_start = e.t_event - 5e-5;
+    e.t_control = e.t_event - 2.5e-4;
+    run_to(e.t_mid, e.x_mid, e.mode_mid);
+    run_to(e.t_start, e.x_start, e.mode_start);
+    run_to(e.t_control, e.x_control, e.mode_control);
+    return e;
+  }();
+  return s;
+}
+
+template <class Method>
+void BM_Step(benchmark::State& st) {
+  const EventSetup& e = setup();
+  System& sys = *e.scene.system;
+  const double h = static_cast<double>(st.range(0)) * 1e-6;
+  typename Method::template Core<System> core;
+  core.initialize(e.x_mid);
+  System::State f0(e.x_mid.size()), x1(e.x_mid.size()), f1(e.x_mid.size());
+  sys.rhs(e.mode_mid, e.t_mid, e.x_mid, f0);
+  StepperStats stats;
+  for (auto _ : st) {
+    core.new_point();  // a new step start: Rosenbrock23 re-forms its Jacobian, as in a run
+    core.step(sys, e.mode_mid, e.t_mid, e.x_mid, f0, h, x1, f1, 1e-8, 1e-12, stats);
+    benchmark::DoNotOptimize(x1.data());
+  }
+  st.counters["rhs_per_step"] = benchmark::Counter(static_cast<double>(stats.rhs_evaluations),
+                                                   benchmark::Counter::kAvgIterations);
+}
+BENCHMARK_TEMPLATE(BM_Step, RungeKutta4)->Arg(100);
+BENCHMARK_TEMPLATE(BM_Step, DormandPrince54)->Arg(10);
+BENCHMARK_TEMPLATE(BM_Step, Rosenbrock23)->Arg(100);
+
+/// Integrates the 1e-4 s window [t_start, t_start + 1e-4] that contains one contact switch
+/// (range(1) = 1) or the control window without one (range(1) = 0); range(0) = 1: bisection.
+template <class Method>
+void BM_EventWindow(benchmark::State& st) {
+  const EventSetup& e = setup();
+  if (e.t_event <= 0) {
+    st.SkipWithError("no isolated contact switch found after t = 0.1 s");
+    return;
+  }
+  System& sys = *e.scene.system;
+  StepperOptions<double> opt;
+  opt.fixed_step = 1e-4;
+  opt.rtol = 1e-8;
+  opt.atol = 1e-12;
+  opt.event_location = st.range(0) != 0 ? EventLocation::Bisection : EventLocation::DenseRootFinding;
+  const bool with_event = st.range(1) != 0;
+  const double t0 = with_event ? e.t_start : e.t_control;
+  const System::State& x0 = with_event ? e.x_start : e.x_control;
+  const System::Mode& m0 = with_event ? e.mode_start : e.mode_control;
+  HybridStepper<System, Method> stepper(sys, opt);
+  StepperStats total;
+  for (auto _ : st) {
+    const auto r = stepper.integrate(m0, t0, x0, t0 + 1e-4);
+    total.rhs_evaluations += r.stats.rhs_evaluations;
+    total.guard_evaluations += r.stats.guard_evaluations;
+    total.events += r.stats.events;
+    total.accepted_steps += r.stats.accepted_steps;
+  }
+  using C = benchmark::Counter;
+  st.counters["rhs"] = C(static_cast<double>(total.rhs_evaluations), C::kAvgIterations);
+  st.counters["guards"] = C(static_cast<double>(total.guard_evaluations), C::kAvgIterations);
+  st.counters["events"] = C(static_cast<double>(total.events), C::kAvgIterations);
+  st.counters["steps"] = C(static_cast<double>(total.accepted_steps), C::kAvgIterations);
+  st.SetLabel(std::string(with_event ? "window with 1 switch, " : "control window, ") + to_string(opt.event_location));
+}
+BENCHMARK_TEMPLATE(BM_EventWindow, RungeKutta4)->ArgsProduct({{1, 0}, {1, 0}});
+BENCHMARK_TEMPLATE(BM_EventWindow, DormandPrince54)->ArgsProduct({{0, 1}, {1, 0}});
+
+// ---- 20 s of the default scene ------------------------------------------------------------------
+
+/// The example's default run (DOPRI 5(4), rtol 1e-8, atol 1e-12, root finding, samples every
+/// 1e-4 s with full records over the last second) at N0 = range(0) N, once.
+void BM_DefaultScene20s(benchmark::State& st) {
+  blade::BladeParameters p;
+  p.preload = static_cast<double>(st.range(0));
+  blade::BladeScene scene = blade::make_blade_scene(p);
+  blade::RunSettings settings;
+  settings.run.stepper.rtol = 1e-8;
+  settings.run.stepper.atol = 1e-12;
+  blade::RunRecord rec;
+  for (auto _ : st) rec = blade::run_scene(scene, settings);
+  st.counters["rhs"] = static_cast<double>(rec.stats.rhs_evaluations);
+  st.counters["events"] = static_cast<double>(rec.stats.events);
+  st.counters["steps"] = static_cast<double>(rec.stats.accepted_steps);
+  st.counters["t_end"] = rec.t_end;
+  st.SetLabel(std::string(to_string(rec.status)) + ", " + rec.overall_regime);
+}
+BENCHMARK(BM_DefaultScene20s)->Arg(1)->Arg(12)->Arg(26)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
