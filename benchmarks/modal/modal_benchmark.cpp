@@ -48,7 +48,8 @@ void matrix_counters(benchmark::State& state, const AssembledFrame<double>& f, E
   state.counters["elements"] = double(elements);
   state.counters["free_dofs"] = double(f.num_free());
   state.counters["nnz_KM"] = nnz;
-  state.counters["MiB_KM"] = (nnz * (sizeof(double) + sizeof(int)) + 2.0 * (f.num_free() + 1) * sizeof(int)) / 1048576.0;
+  const double bytes = nnz * double(sizeof(double) + sizeof(int)) + 2.0 * double(f.num_free() + 1) * double(sizeof(int));
+  state.counters["MiB_KM"] = bytes / 1048576.0;
 }
 
 void BM_AssembleCantilever(benchmark::State& state) {
