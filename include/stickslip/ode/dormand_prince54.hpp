@@ -60,10 +60,10 @@ struct DormandPrince54 {
       sys.rhs(m, t + h, x1, f1);
       stats.rhs_evaluations += 6;
       dense_ready_ = false;
-      return detail::weighted_rms(
-          h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3_ + c(71.0 / 1920.0) * k4_ -
-               c(17253.0 / 339200.0) * k5_ + c(22.0 / 525.0) * k6_ - c(1.0 / 40.0) * f1),
-          x0, x1, rtol, atol);
+      xs_.noalias() = h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3_ +
+                           c(71.0 / 1920.0) * k4_ - c(17253.0 / 339200.0) * k5_ +
+                           c(22.0 / 525.0) * k6_ - c(1.0 / 40.0) * f1);
+      return detail::weighted_rms(xs_, x0, x1, rtol, atol);
     }
 
     /// Continuous extension at t0 + theta h, theta in [0, 1] (Hairer & Wanner, dopri5 CONTD5):

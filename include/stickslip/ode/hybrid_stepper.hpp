@@ -162,18 +162,25 @@ auto HybridStepper<System, Method>::initial_step(const Mode& m, Scalar t, Scalar
   if (opt_.initial_step > 0) return std::min(opt_.initial_step, hmax);
   const auto scale = opt_.atol + opt_.rtol * x_.array().abs();
   const Scalar n = static_cast<Scalar>(x_.size());
-  const Scalar d0 = std::sqrt((x_.array() / scale).square().sum() / n);
-  const Scalar d1 = std::sqrt((f_.array() / scale).square().sum() / n);
+  // An exactly zero component counts 0 even where its scale is 0 (atol = 0): no 0/0.
+  auto rms = [&](const auto& v) {
+    return std::sqrt((v.array() == Scalar(0)).select(Scalar(0), v.array() / scale).square().sum() / n);
+  };
+  const Scalar d0 = rms(x_);
+  const Scalar d1 = rms(f_);
   Scalar h0 = (d0 < Scalar(1e-5) || d1 < Scalar(1e-5)) ? Scalar(1e-6) : Scalar(0.01) * d0 / d1;
   h0 = std::min(h0, hmax);
   x1_.noalias() = x_ + h0 * f_;
   if (!eval_rhs(m, t + h0, x1_, f1_, st)) return h0;
-  const Scalar d2 = std::sqrt(((f1_ - f_).array() / scale).square().sum() / n) / h0;
+  const Scalar d2 = rms(f1_ - f_) / h0;
   const Scalar dm = std::max(d1, d2);
   const Scalar h1 = dm <= Scalar(1e-15)
                         ? std::max(Scalar(1e-6), h0 * Scalar(1e-3))
                         : pow(Scalar(0.01) / dm, Scalar(1) / Scalar(Method::order + 1));
-  return std::min({Scalar(100) * h0, h1, hmax});
+  const Scalar h = std::min({Scalar(100) * h0, h1, hmax});
+  // A zero-scale component with a non-zero rate (pure relative control) gives h = 0 or NaN:
+  // start small and let the error control (and min_step) decide.
+  return (h > 0 && std::isfinite(h)) ? h : std::min(Scalar(1e-6), hmax);
 }
 
 template <class System, class Method>
@@ -338,7 +345,8 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t));
     ++attempts;
     const Scalar err = core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
-    bool ok = std::isfinite(err) && x1_.allFinite() && f1_.allFinite();
+    // An infinite error norm of a finite step is a rejection (e.g. atol = 0 on a zero component).
+    bool ok = !std::isnan(err) && x1_.allFinite() && f1_.allFinite();
     if (ok) {
       eval_guards(mode, t1, x1_, gb_, st);
       ok = gb_.allFinite();

@@ -103,8 +103,8 @@ struct Rosenbrock23 {
       rhs_.noalias() = f1 - e32 * (k2_ - f_half_) - Scalar(2) * (k1_ - f0) + (h * d) * dfdt_;
       k3_.noalias() = lu_.solve(rhs_);
       stats.rhs_evaluations += 2;
-      return detail::weighted_rms((h / Scalar(6)) * (k1_ - Scalar(2) * k2_ + k3_), x0, x1, rtol,
-                                  atol);
+      xs_.noalias() = (h / Scalar(6)) * (k1_ - Scalar(2) * k2_ + k3_);
+      return detail::weighted_rms(xs_, x0, x1, rtol, atol);
     }
 
     /// Continuous extension at t0 + theta h, theta in [0, 1] (order 2).

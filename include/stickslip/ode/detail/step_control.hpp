@@ -18,8 +18,11 @@ template <class Scalar, class E, class A, class B>
 Scalar weighted_rms(const Eigen::MatrixBase<E>& err, const Eigen::MatrixBase<A>& a,
                     const Eigen::MatrixBase<B>& b, Scalar rtol, Scalar atol) {
   using std::sqrt;
-  const Scalar sum =
-      (err.array() / (atol + rtol * a.array().abs().max(b.array().abs()))).square().sum();
+  // An exactly zero error counts 0 even where the weight is 0 (atol = 0 on a zero component).
+  const Scalar sum = (err.array() == Scalar(0))
+                         .select(Scalar(0), err.array() / (atol + rtol * a.array().abs().max(b.array().abs())))
+                         .square()
+                         .sum();
   return sqrt(sum / static_cast<Scalar>(err.size()));
 }
 
