@@ -347,11 +347,15 @@ class FrictionDampedSystem {
     if (!resolve(mode, involved, t, x)) return false;
     {
       const Evaluation& e = evaluate(mode, t, x);
-      for (Index i = 0; i < D_; ++i)
-        if (watch_lift_off(i) && !(e.N[i] > Scalar(0))) {
+      for (Index i = 0; i < D_; ++i) {
+        // A constant normal load N0 = 0 never presses an exact-law damper: no contact, ever.
+        const std::size_t iu = static_cast<std::size_t>(i);
+        const bool unpressed = !inertial_[iu] && has_stick_[iu];
+        if ((watch_lift_off(i) || unpressed) && !(e.N[i] > Scalar(0))) {
           stop(StopReason::LiftOff, i, t, x, mode);
           return false;
         }
+      }
     }
     return true;
   }
@@ -521,7 +525,16 @@ class FrictionDampedSystem {
     for (Index i = 0; i < D; ++i) {
       const Scalar X = moving ? x[contact_offset() + i] : dampers_[static_cast<std::size_t>(i)].contact_coordinate;
       e.X[i] = X;
-      if (moving) evaluate_shapes(i, X);
+      if (moving) {
+        using std::isfinite;
+        if (!isfinite(X)) {  // a blown-up trial state: report it as non-finite (no shapes at NaN)
+          for (Vector* v : {&e.qdd, &e.N, &e.f, &e.V, &e.Vdot, &e.xdd, &e.slope, &e.y})
+            v->setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+          e.finite = false;
+          return;
+        }
+        evaluate_shapes(i, X);
+      }
     }
     if (moving) G_.noalias() = C_.transpose() * C_;
     cr_.noalias() = C_.transpose() * r0_;
