@@ -1,0 +1,330 @@
+// Stability at the extremes of the numerics (docs/stability.md): retained modes from 1 to 50,
+// a fixed step above the explicit stability limit, tolerances looser than 1e-2 and below
+// round-off, and a long run of 10^4 excitation periods.
+#include "stability/stability_support.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+namespace {
+using namespace stability;
+
+constexpr double kPi = 3.14159265358979323846;
+// RK4's stability interval on the imaginary axis: |R(i y)| <= 1 for |y| <= 2 sqrt(2).
+constexpr double kRk4Limit = 2.8284271247461903;
+
+struct Scene {
+  TScene s;
+  ModelOptions<double> model{};
+  std::vector<PointLoad<double>> loads;
+  std::unique_ptr<System> sys;
+
+  Scene(int modes, int blade_elements, int platform_elements, double amplitude)
+      : s(make_t_frame(modes, blade_elements, platform_elements)), loads(paper_load(s, amplitude)) {}
+  System& build(std::vector<PointDamper<double>> dampers) {
+    sys = std::make_unique<System>(s.frame, s.basis, std::move(dampers), loads, model);
+    return *sys;
+  }
+  Outcome run(std::vector<PointDamper<double>> dampers, double t_end, const RunOptions<double>& o) {
+    build(std::move(dampers));
+    return stability::run(*sys, s.frame, s.basis, t_end, o);
+  }
+  std::vector<PointDamper<double>> paper() const { return paper_dampers(s, 12.0); }
+  double omega_max() const { return std::sqrt(sys->omega_squared().maxCoeff()); }
+};
+
+// `rtol`: the run's tolerance. A located stick -> slip event lands on a fresh step whose local
+// error (~rtol x the ~10 N contact forces) shows in |f| - mu_s N; with tight tolerances the
+// event-time bound 1e-12 s x force rates (<= 1e5 N/s) = 1e-7 N is the floor.
+void expect_success_and_checks(const Outcome& o, double relative_residual, double rtol) {
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  ASSERT_EQ(o.status, Status::Success);
+  EXPECT_TRUE(o.finite);
+  EXPECT_LE(o.relative_residual(), relative_residual);
+  // Same round-off / event-location bounds as in parameter_extremes_test.cpp.
+  EXPECT_LE(o.max_stuck_V, 1e-10);
+  EXPECT_LE(o.max_capacity_excess, std::max(1e-7, 10.0 * rtol));
+  EXPECT_LE(o.max_wrong_slip_V, 1e-11 * o.max_slip_Vdot + 1e-15);
+}
+
+void expect_message_time(const Outcome& o) {
+  EXPECT_NEAR(time_in_message(o.message), o.t, 1e-9 * std::max(1.0, o.t)) << o.message;
+}
+
+// ---- retained modes 1..50 -----------------------------------------------------------------------
+// A T-frame meshed with 24 + 8 elements (96 free DOFs); the paper's excitation (200 N, to reach
+// stick-slip). omega_max grows from 194 rad/s (1 mode) to 8.1e5 rad/s (50 modes). Stiffness-
+// proportional damping zeta_j = omega_j / (2 omega_max) (0.5 for the highest mode, 1e-4 for the
+// first) lets the high modes excited by the preload step decay, as in a real structure: then
+// they make the problem stiff (explicit steps bounded by stability, not accuracy).
+class ManyModes : public ::testing::TestWithParam<int> {};
+
+Scene many_modes_scene(int modes) {
+  Scene sc(modes, 24, 8, 200.0);
+  const double w_max = sc.s.basis.omega().maxCoeff();
+  sc.s.basis = sc.s.basis.with_rayleigh_damping(0.0, 1.0 / w_max);
+  return sc;
+}
+
+TEST_P(ManyModes, DormandPrinceFinishesPayingTheStabilityLimit) {
+  Scene sc = many_modes_scene(GetParam());
+  const double t_end = 0.005;  // includes the first stick -> slip switches (~3.4 ms)
+  const Outcome o = sc.run(sc.paper(), t_end, options_for(Integrator::DormandPrince54, 1e-6, 1e-10));
+  // rtol 1e-6: the accumulated energy error stays ~1e-6 of the scale.
+  expect_success_and_checks(o, 1e-5, 1e-6);
+  EXPECT_GE(o.contact_events, 2);
+  // An explicit 7-stage method is stable on at most |h lambda| <= 6 along the imaginary axis
+  // (Kinnmark & Gray), so it needs at least |lambda_max| t_end / 6 steps (|lambda| = omega).
+  EXPECT_GE(static_cast<double>(o.stats.accepted_steps), sc.omega_max() * t_end / 6.0);
+}
+
+TEST_P(ManyModes, Rosenbrock23Finishes) {
+  // The stiff method must finish; its finite-difference Jacobian costs ~2n right-hand sides per
+  // step, so the run is short (before the first switch) and the tolerance moderate.
+  Scene sc = many_modes_scene(GetParam());
+  const Outcome o = sc.run(sc.paper(), 0.002, options_for(Integrator::Rosenbrock23, 1e-4, 1e-8));
+  // Order 2 at rtol 1e-4: residual ~1e-4 of the scale at most (measured 3e-5 with 1 mode).
+  expect_success_and_checks(o, 1e-3, 1e-4);
+}
+INSTANTIATE_TEST_SUITE_P(Stability, ManyModes, ::testing::Values(1, 6, 20, 50));
+
+TEST(ManyModes, DormandPrinceWithAStepBudgetReportsMaxSteps) {
+  Scene sc(50, 24, 8, 200.0);
+  auto opt = options_for(Integrator::DormandPrince54, 1e-6, 1e-10);
+  opt.stepper.max_steps = 200;
+  const Outcome o = sc.run(sc.paper(), 0.005, opt);
+  SCOPED_TRACE(describe(o));
+  ASSERT_EQ(o.status, Status::MaxSteps);
+  EXPECT_NE(o.message.find("max_steps 200 reached"), std::string::npos);
+  expect_message_time(o);
+  EXPECT_LT(o.t, 0.005);
+  EXPECT_TRUE(o.finite);
+  EXPECT_EQ(o.stats.accepted_steps + o.stats.rejected_steps, 200);
+}
+
+// ---- fixed step vs. the explicit stability limit ------------------------------------------------
+// 6 modes (omega_max = 1.6e4 rad/s), the paper's 20 N excitation, RK4 with h = factor * 2.83 /
+// omega_max for 2000 steps.
+Outcome rk4_run(double factor, int steps) {
+  Scene sc(6, 6, 4, 20.0);
+  sc.build(sc.paper());
+  const double h = factor * kRk4Limit / sc.omega_max();
+  return sc.run(sc.paper(), steps * h, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, h));
+}
+
+TEST(FixedStep, BelowTheStabilityLimitSucceeds) {
+  const Outcome o = rk4_run(0.9, 2000);
+  // At h omega_max = 2.55 RK4 damps the highest mode numerically (|R| < 1); the audit sees that
+  // as a residual of order 1e-4 of the (small) energy the highest mode carries: 1e-3.
+  expect_success_and_checks(o, 1e-3, 0.0);
+}
+
+// Above the limit the highest mode grows by |R(i h omega)| > 1 per step until the dampers'
+// stick/slip switching (an event at every step) bounds it: the run ends as Success with finite
+// values that are wrong. (|R(1.1 x 2.83 i)| = 1.9: saturated after ~50 of the 800 steps.) Only the energy audit shows it (residual ~100 % of the energy scale).
+// This is a limitation, reported in docs/stability.md; the test pins the detection.
+TEST(FixedStep, AboveTheStabilityLimitIsCaughtByTheEnergyAuditOnly) {
+  const Outcome o = rk4_run(1.1, 800);
+  SCOPED_TRACE(describe(o));
+  EXPECT_EQ(o.status, Status::Success);
+  EXPECT_TRUE(o.finite);
+  EXPECT_GT(o.relative_residual(), 0.5);
+}
+
+// The documented wish: a fixed step above the stability limit should not end as Success.
+// DISABLED: the stepper cannot know omega_max and the model does not check the step (see
+// docs/stability.md, "limitations").
+TEST(FixedStep, DISABLED_AboveTheStabilityLimitIsNotSuccess) {
+  const Outcome o = rk4_run(1.1, 800);
+  EXPECT_NE(o.status, Status::Success) << describe(o);
+}
+
+TEST(FixedStep, FarAboveTheStabilityLimitStopsButTheCauseIsMisnamed) {
+  // At 3 times the limit the blown-up normal force crosses zero (after ~400 steps): the run
+  // stops with a lift-off status (the audit residual ~100 % shows it is numerical).
+  for (double factor : {3.0}) {
+    const Outcome o = rk4_run(factor, 2000);
+    SCOPED_TRACE(describe(o));
+    EXPECT_FALSE(o.threw);
+    EXPECT_EQ(o.status, Status::StoppedBySystem);
+    EXPECT_EQ(o.stop_reason, System::StopReason::LiftOff);
+    EXPECT_GT(o.relative_residual(), 0.5);
+  }
+}
+
+// Regression test of "model: fix a non-finite contact coordinate throwing from rhs": RK4 with the
+// paper's step 1e-4 s on 50 modes (h omega_max = 81, 29x the limit) blows up; the NaN contact
+// coordinate of a trial stage used to throw std::invalid_argument out of MemberShapes::evaluate
+// through integrate(). It must end as a status, never an exception.
+TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
+  Scene sc(50, 24, 8, 20.0);
+  const Outcome o = sc.run(sc.paper(), 0.01, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4));
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  ASSERT_EQ(o.status, Status::NonFiniteState);
+  EXPECT_NE(o.message.find("became non-finite"), std::string::npos);
+  expect_message_time(o);
+  EXPECT_LT(o.t, 0.01);
+}
+
+// ---- tolerances ---------------------------------------------------------------------------------
+struct Tol {
+  double rtol, atol;
+};
+
+// Tolerances looser than 1e-2: the integrator honours them, the trajectory is wrong by tens of
+// per cent, and in this scene a spurious lift-off stops the run (an accurate run keeps N > 7 N).
+// The energy audit's residual shows the inaccuracy.
+class LooseTolerance : public ::testing::TestWithParam<Tol> {};
+TEST_P(LooseTolerance, SpuriousLiftOffFlaggedByTheEnergyAudit) {
+  Scene sc(6, 6, 4, 200.0);
+  const Outcome o = sc.run(sc.paper(), 0.01, options_for(Integrator::DormandPrince54, GetParam().rtol, GetParam().atol));
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  EXPECT_TRUE(o.finite);
+  ASSERT_EQ(o.status, Status::StoppedBySystem);
+  EXPECT_EQ(o.stop_reason, System::StopReason::LiftOff);
+  expect_message_time(o);
+  EXPECT_GT(o.relative_residual(), 1e-3);
+}
+INSTANTIATE_TEST_SUITE_P(Stability, LooseTolerance,
+                         ::testing::Values(Tol{0.1, 0.1}, Tol{0.1, 1e-8}, Tol{5e-2, 1e-6}));
+
+TEST(Tolerance, AccurateReferenceHasNoLiftOff) {
+  Scene sc(6, 6, 4, 200.0);
+  const Outcome o = sc.run(sc.paper(), 0.01, options_for(Integrator::DormandPrince54, 1e-10, 1e-14));
+  expect_success_and_checks(o, 1e-8, 1e-10);
+  EXPECT_GT(o.min_N, 5.0);
+}
+
+// Tolerances at and below round-off: DormandPrince54 still succeeds (its error estimate is a
+// difference of stage combinations that vanishes with h), with many more steps.
+class TightTolerance : public ::testing::TestWithParam<Tol> {};
+TEST_P(TightTolerance, SucceedsOrUnderflows) {
+  Scene sc(6, 6, 4, 200.0);
+  auto opt = options_for(Integrator::DormandPrince54, GetParam().rtol, GetParam().atol);
+  opt.stepper.max_steps = 300'000;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Outcome o = sc.run(sc.paper(), 0.002, opt);
+  std::printf("rtol %g atol %g: %s (%.2f s)\n", GetParam().rtol, GetParam().atol, describe(o).c_str(),
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  expect_success_and_checks(o, 1e-10, GetParam().rtol);
+}
+INSTANTIATE_TEST_SUITE_P(Stability, TightTolerance,
+                         ::testing::Values(Tol{1e-14, 1e-18}, Tol{1e-16, 1e-20}));
+
+// Regression test of "ode: fix pure relative tolerance (atol = 0) looping on a zero state
+// component": the error norm and the starting-step estimate divided 0 by 0 for components that
+// are zero (the rest state), the step became NaN and the run rejected steps forever at t = 0 (up
+// to max_steps, 1e8 by default). Now the zero components count 0 and the run proceeds; at
+// rtol 1e-18 (below round-off) it needs steps so small that a budget or min_step ends it.
+TEST(Tolerance, PureRelativeBelowRoundOffEndsWithAStatusNotALoop) {
+  Scene sc(6, 6, 4, 200.0);
+  auto opt = options_for(Integrator::DormandPrince54, 1e-18, 0.0);
+  opt.stepper.max_steps = 20'000;
+  const Outcome o = sc.run(sc.paper(), 0.004, opt);
+  std::printf("rtol 1e-18 atol 0: %s\n", describe(o).c_str());
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  EXPECT_TRUE(o.status == Status::StepSizeUnderflow || o.status == Status::MaxSteps);
+  expect_message_time(o);
+  EXPECT_TRUE(o.finite);
+  if (o.status == Status::MaxSteps) {
+    EXPECT_GT(o.stats.accepted_steps, 0);  // it progressed
+  }
+}
+
+
+TEST(Tolerance, TightWithALargeMinStepReportsStepSizeUnderflow) {
+  Scene sc(6, 6, 4, 200.0);
+  auto opt = options_for(Integrator::DormandPrince54, 1e-14, 1e-18);
+  opt.stepper.min_step = 1e-6;
+  const Outcome o = sc.run(sc.paper(), 0.004, opt);
+  SCOPED_TRACE(describe(o));
+  ASSERT_EQ(o.status, Status::StepSizeUnderflow);
+  EXPECT_NE(o.message.find("fell below min_step"), std::string::npos);
+  expect_message_time(o);
+  EXPECT_TRUE(o.finite);
+}
+
+// ---- long run -----------------------------------------------------------------------------------
+// 10^4 excitation periods (314 s) of the cheapest composed scene: one retained mode, one damper
+// held stuck by mu_s = 1e3, 2 % modal damping, the paper's 20 N at 200 rad/s, RK4 with 32 steps
+// per period (the paper's method). Checked at every step: the contact coordinate X is
+// bit-identical to X0 and the state never leaves Stick; every period: the damper's position
+// relative to the member point, x - q^T psi_u(X0), stays at its initial 0 (no drift) and
+// V = x' - q'^T psi_u(X0) stays 0; the energy residual stays bounded.
+class LongRunObserver : public NullObserver {
+ public:
+  LongRunObserver(System& sys, const System::Vector& psi_u, double X0, double E0, double t_mark)
+      : sys_(sys), psi_u_(psi_u), X0_(X0), E0_(E0), t_mark_(t_mark) {}
+
+  bool on_step(double t, const System::State& x, const DamperStates& mode) {
+    ++steps;
+    if (mode[0] != ContactState::Stick) ++not_stuck;
+    if (x[sys_.contact_offset()] != X0_) ++moved;
+    if (steps % 32 != 0) return true;
+    const Index n = sys_.num_modes();
+    max_x = std::max(max_x, std::abs(x[sys_.x_offset()]));
+    max_xd = std::max(max_xd, std::abs(x[sys_.xd_offset()]));
+    max_drift = std::max(max_drift, std::abs(x[sys_.x_offset()] - x.head(n).dot(psi_u_)));
+    max_V = std::max(max_V, std::abs(x[sys_.xd_offset()] - x.segment(n, n).dot(psi_u_)));
+    const auto b = sys_.energy_balance(mode, t, x, E0_);
+    for (double term : {b.mechanical - E0_, b.external_work, b.viscous_dissipation})
+      scale = std::max(scale, std::abs(term));
+    residual = std::max(residual, std::abs(b.residual));
+    if (t <= t_mark_) residual_at_mark = residual;
+    return true;
+  }
+
+  long steps = 0, not_stuck = 0, moved = 0;
+  double max_x = 0, max_xd = 0, max_drift = 0, max_V = 0, scale = 0, residual = 0,
+         residual_at_mark = 0;
+
+ private:
+  System& sys_;
+  System::Vector psi_u_;
+  double X0_, E0_, t_mark_;
+};
+
+TEST(LongRun, TenThousandPeriodsStuckDamperDoesNotDriftAndTheResidualStaysBounded) {
+  Scene sc(1, 4, 2, 20.0);
+  sc.s.basis = sc.s.basis.with_modal_damping(Eigen::VectorXd::Constant(1, 0.02));
+  const double X0 = 0.01;
+  System& sys = sc.build({damper(sc.s.platform, X0, 0.0209, 1e4, 12.0, 1e3, 0.3)});
+  const double T = 2 * kPi / 200.0, t_end = 1e4 * T;
+  System::State x0 = sys.initial_state();
+  DamperStates mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+  const System::Vector psi_u = MemberShapes<double>(sc.s.frame, sc.s.platform, sc.s.basis).evaluate(X0).psi_u;
+  LongRunObserver obs(sys, psi_u, X0, sys.mechanical_energy(mode, 0.0, x0), 1e3 * T);
+  const auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, T / 32);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto r = simulate(sys, mode, 0.0, x0, t_end, opt, obs);
+  std::printf("long run: %s steps %ld (%.2f s) max|x| %g max|x'| %g drift %g V %g residual %g "
+              "(at 1e3 T %g) scale %g\n",
+              to_string(r.status), obs.steps,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), obs.max_x,
+              obs.max_xd, obs.max_drift, obs.max_V, obs.residual, obs.residual_at_mark, obs.scale);
+  ASSERT_EQ(r.status, Status::Success) << r.message;
+  EXPECT_TRUE(r.x.allFinite());
+  EXPECT_EQ(r.stats.events, 0);
+  EXPECT_EQ(obs.not_stuck, 0);
+  EXPECT_EQ(obs.moved, 0);  // X bit-identical: X' = V = 0 exactly in stick
+  // No drift: x - q^T psi_u is a linear invariant of the stuck equations (x'' = psi_u^T q''),
+  // which RK4 preserves exactly up to round-off, at most ~4 eps per step of the largest value:
+  const double steps = static_cast<double>(obs.steps);
+  const double eps = std::numeric_limits<double>::epsilon();
+  EXPECT_LE(obs.max_drift, 4 * eps * steps * obs.max_x);
+  EXPECT_LE(obs.max_V, 4 * eps * steps * obs.max_xd);
+  EXPECT_GT(obs.max_x, 0.0);
+  // Energy residual: RK4 at h omega = 0.19 loses (h omega)^6 / 72 ~ 7e-7 of the modal energy per
+  // step (|R(i y)|^2 = 1 - y^6/72 + ...), i.e. ~2.5e-5 E per period against a viscous loss of
+  // 4 pi zeta E = 0.25 E per period: the residual grows like the dissipated work, ~1e-4 of the
+  // scale; bound 1e-3. And it grows at most linearly in time: <= 15 x its value at 10^3 periods.
+  EXPECT_LE(obs.residual, 1e-3 * obs.scale);
+  EXPECT_LE(obs.residual, 15 * obs.residual_at_mark);
+}
+
+}  // namespace
