@@ -8,7 +8,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "stickslip/detail/validate.hpp"
@@ -273,7 +275,7 @@ class MemberShapes {
                             n);
     using std::abs;
     const Scalar norm2 = d.cos * d.cos + d.sin * d.sin;
-    if (!(abs(norm2 - Scalar(1)) <= Scalar(1e-10)))
+    if (!(abs(norm2 - Scalar(1)) <= Scalar(100) * std::numeric_limits<Scalar>::epsilon()))
       detail::throw_invalid(where, "(cos, sin) must be a unit vector, cos^2 + sin^2", norm2);
     if (d.free_dofs.size() != 0) {
       if (d.free_dofs.size() != 3 * nodes)
