@@ -3,8 +3,10 @@
 // a coarse mesh) with two dampers under the platform, and helpers to read quantities back.
 #include <stickslip/stickslip.hpp>
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -67,6 +69,81 @@ inline System::State random_state(const System& sys, std::mt19937& rng) {
     if (sys.contact_offset() >= 0) x[sys.contact_offset() + i] += 1e-3 * u(rng);
   }
   return x;
+}
+
+/// Records the samples (through the dense output) and the events (with the state after the
+/// transition) of a run.
+struct Recorder : NullObserver {
+  struct Event {
+    double t;
+    DamperStates from, to;
+    System::State x;  ///< state after the transition
+  };
+  std::vector<double> t;
+  std::vector<System::State> x;
+  std::vector<DamperStates> mode;
+  std::vector<Event> events;
+
+  template <class Scalar, class State, class Mode>
+  bool on_sample(Scalar tt, const State& xx, const Mode& m) {
+    t.push_back(tt);
+    x.push_back(xx);
+    mode.push_back(m);
+    return true;
+  }
+  template <class Scalar, class Mode, class State>
+  void on_event(const EventRecord<Scalar, Mode>& r, const State& xx) {
+    events.push_back(Event{r.t, r.from, r.to, xx});
+  }
+};
+
+/// Starts `sys` from rest in its requested (made consistent) mode and runs it to t_end.
+inline HybridResult<double, System::State, DamperStates> run_from_rest(System& sys, double t_end,
+                                                                       const RunOptions<double>& run,
+                                                                       Recorder& rec, double* E0 = nullptr) {
+  System::State x0 = sys.initial_state();
+  DamperStates mode = sys.requested_mode();
+  EXPECT_TRUE(sys.make_consistent(mode, 0.0, x0));
+  if (E0) *E0 = sys.mechanical_energy(mode, 0.0, x0);
+  return simulate(sys, mode, 0.0, x0, t_end, run, rec);
+}
+
+/// Closed-form response of the undamped linear system M q'' + K q = p sin(W t) + c from rest,
+/// through the generalized eigendecomposition K v = lambda M v (V^T M V = I), each modal
+/// coordinate solving eta'' + lambda eta = p_j sin(W t) + c_j, eta(0) = eta'(0) = 0:
+///   eta = c_j / lambda (1 - cos w t) + p_j / (lambda - W^2) (sin W t - (W / w) sin w t).
+class LinearClosedForm {
+ public:
+  LinearClosedForm(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K, const Eigen::VectorXd& p,
+                   const Eigen::VectorXd& c, double W)
+      : W_(W) {
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+    lambda_ = es.eigenvalues();
+    V_ = es.eigenvectors();
+    p_ = V_.transpose() * p;
+    c_ = V_.transpose() * c;
+  }
+  Eigen::VectorXd q(double t) const {
+    Eigen::VectorXd eta(lambda_.size());
+    for (Index j = 0; j < lambda_.size(); ++j) {
+      const double w = std::sqrt(lambda_[j]);
+      eta[j] = c_[j] / lambda_[j] * (1 - std::cos(w * t)) +
+               p_[j] / (lambda_[j] - W_ * W_) * (std::sin(W_ * t) - W_ / w * std::sin(w * t));
+    }
+    return V_ * eta;
+  }
+  const Eigen::VectorXd& eigenvalues() const { return lambda_; }
+
+ private:
+  double W_;
+  Eigen::VectorXd lambda_, p_, c_;
+  Eigen::MatrixXd V_;
+};
+
+/// Modal row of a nodal DOF as a column vector (component 2 only; independent of the model's
+/// point evaluation by component 3).
+inline Eigen::VectorXd nodal(const ModalBasis<double>& basis, Index node, Dof dof) {
+  return basis.nodal(node, dof).transpose();
 }
 
 }  // namespace model_test
