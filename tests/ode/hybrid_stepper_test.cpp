@@ -238,3 +238,76 @@ TEST(HybridStepperObservers, SamplesAtAFixedRateThroughTheDenseOutput) {
 }
 
 }  // namespace
+
+namespace {
+
+template <int N>
+using Linear = stickslip::test::LinearSystem<N>;
+
+// Samples of x[0] at the output times, for any state type.
+struct FirstComponentSamples : stickslip::NullObserver {
+  std::vector<double> t, x;
+  template <class State>
+  bool on_sample(double ts, const State& xs, const int&) {
+    t.push_back(ts);
+    x.push_back(xs[0]);
+    return true;
+  }
+};
+
+template <int N>
+stickslip::HybridResult<double, typename Linear<N>::State, int> run_oscillator(
+    FirstComponentSamples& obs) {
+  Linear<N> sys;
+  sys.a = Linear<N>::Matrix::Zero(2, 2);
+  sys.a(0, 1) = 1.0;
+  sys.a(1, 0) = -9.0;
+  StepperOptions<double> opt;
+  opt.rtol = 1e-10;
+  opt.atol = 1e-12;
+  opt.output_interval = 0.1;
+  HybridStepper<Linear<N>, DormandPrince54> stepper(sys, opt);
+  typename Linear<N>::State x0 = Linear<N>::State::Zero(2);
+  x0[0] = 1.0;
+  return stepper.integrate(0, 0.0, x0, 2.0, obs);
+}
+
+TEST(HybridStepperSteps, SmallFixedAndDynamicStatesTakeTheSameStepsAndDenseOutput) {
+  // x'' = -9 x, x = cos(3 t). A small fixed-size state keeps the Dormand-Prince stages in locals
+  // and a dynamic one in the method's workspace; the arithmetic is the same, so both must take
+  // the same steps, and both dense outputs must follow the closed form.
+  FirstComponentSamples fixed_obs, dynamic_obs;
+  const auto rf = run_oscillator<2>(fixed_obs);
+  const auto rd = run_oscillator<Eigen::Dynamic>(dynamic_obs);
+  ASSERT_EQ(rf.status, Status::Success) << rf.message;
+  ASSERT_EQ(rd.status, Status::Success) << rd.message;
+  EXPECT_EQ(rf.stats.accepted_steps, rd.stats.accepted_steps);
+  EXPECT_EQ(rf.stats.rejected_steps, rd.stats.rejected_steps);
+  EXPECT_EQ(rf.stats.rhs_evaluations, rd.stats.rhs_evaluations);
+  ASSERT_EQ(fixed_obs.x.size(), 21u);
+  ASSERT_EQ(dynamic_obs.x.size(), 21u);
+  for (std::size_t k = 0; k < fixed_obs.x.size(); ++k) {
+    // Dense-output error ~ rtol; 1e-8 leaves room for the global error over 2 s.
+    EXPECT_NEAR(fixed_obs.x[k], std::cos(3.0 * fixed_obs.t[k]), 1e-8) << "t = " << fixed_obs.t[k];
+    // Same operations on the same numbers (vectorised differently): equal to a few ulp.
+    EXPECT_NEAR(fixed_obs.x[k], dynamic_obs.x[k], 1e-14) << "t = " << fixed_obs.t[k];
+  }
+}
+
+TEST(HybridStepperTolerances, PureRelativeControlWithAnExactlyZeroComponent) {
+  // x' = -x, y' = 0 from (1, 0) with atol = 0: y stays exactly 0 and its error weight is 0. An
+  // exactly zero error there counts 0 (not 0/0), so the run succeeds on the x error alone.
+  Linear<2> sys;
+  sys.a << -1.0, 0.0, 0.0, 0.0;
+  StepperOptions<double> opt;
+  opt.rtol = 1e-10;
+  opt.atol = 0.0;
+  HybridStepper<Linear<2>, DormandPrince54> stepper(sys, opt);
+  const auto r = stepper.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 1.0);
+  ASSERT_EQ(r.status, Status::Success) << r.message;
+  // Local relative error <= rtol per step over a few dozen steps: 1e-8 is a wide margin.
+  EXPECT_NEAR(r.x[0], std::exp(-1.0), 1e-8);
+  EXPECT_EQ(r.x[1], 0.0);
+}
+
+}  // namespace

@@ -31,7 +31,8 @@ struct DormandPrince54 {
 
     /// Size the workspace like `prototype` (allocates only for dynamic sizes, once).
     void initialize(const State& prototype) {
-      for (State* v : {&k2_, &k3_, &k4_, &k5_, &k6_, &xs_, &r3_, &r5_}) v->resizeLike(prototype);
+      for (State* v : {&k_.k2, &k_.k3, &k_.k4, &k_.k5, &k_.k6, &k_.xs, &r3_, &r5_})
+        v->resizeLike(prototype);
     }
     /// A new step start point (or a new mode) follows; nothing is cached across points.
     void new_point() noexcept {}
@@ -40,30 +41,27 @@ struct DormandPrince54 {
     /// returns the weighted RMS norm of the embedded error estimate.
     Scalar step(System& sys, const Mode& m, Scalar t, const State& x0, const State& f0, Scalar h,
                 State& x1, State& f1, Scalar rtol, Scalar atol, StepperStats& stats) {
-      const auto c = [](double v) { return static_cast<Scalar>(v); };
-      xs_.noalias() = x0 + (h * c(1.0 / 5.0)) * f0;
-      sys.rhs(m, t + h * c(1.0 / 5.0), xs_, k2_);
-      xs_.noalias() = x0 + h * (c(3.0 / 40.0) * f0 + c(9.0 / 40.0) * k2_);
-      sys.rhs(m, t + h * c(3.0 / 10.0), xs_, k3_);
-      xs_.noalias() = x0 + h * (c(44.0 / 45.0) * f0 - c(56.0 / 15.0) * k2_ + c(32.0 / 9.0) * k3_);
-      sys.rhs(m, t + h * c(4.0 / 5.0), xs_, k4_);
-      xs_.noalias() = x0 + h * (c(19372.0 / 6561.0) * f0 - c(25360.0 / 2187.0) * k2_ +
-                                c(64448.0 / 6561.0) * k3_ - c(212.0 / 729.0) * k4_);
-      sys.rhs(m, t + h * c(8.0 / 9.0), xs_, k5_);
-      xs_.noalias() = x0 + h * (c(9017.0 / 3168.0) * f0 - c(355.0 / 33.0) * k2_ +
-                                c(46732.0 / 5247.0) * k3_ + c(49.0 / 176.0) * k4_ -
-                                c(5103.0 / 18656.0) * k5_);
-      sys.rhs(m, t + h, xs_, k6_);
-      x1.noalias() = x0 + h * (c(35.0 / 384.0) * f0 + c(500.0 / 1113.0) * k3_ +
-                               c(125.0 / 192.0) * k4_ - c(2187.0 / 6784.0) * k5_ +
-                               c(11.0 / 84.0) * k6_);
-      sys.rhs(m, t + h, x1, f1);
       stats.rhs_evaluations += 6;
       dense_ready_ = false;
-      xs_.noalias() = h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3_ +
-                           c(71.0 / 1920.0) * k4_ - c(17253.0 / 339200.0) * k5_ +
-                           c(22.0 / 525.0) * k6_ - c(1.0 / 40.0) * f1);
-      return detail::weighted_rms(xs_, x0, x1, rtol, atol);
+      if constexpr (!stages_in_registers) {
+        return stages(sys, m, t, x0, f0, h, x1, f1, rtol, atol, k_.k2, k_.k3, k_.k4, k_.k5, k_.k6,
+                      k_.xs);
+      } else {
+        // Small fixed size: the stages live in separate locals, kept in registers, and are
+        // stored for the dense output once. Reading back as packets stages that the right-hand
+        // side has just written element by element into memory costs a store-forwarding stall
+        // per stage (a struct of locals is not split into registers either).
+        State k2, k3, k4, k5, k6, xs, x1_local, f1_local;
+        const Scalar err =
+            stages(sys, m, t, x0, f0, h, x1_local, f1_local, rtol, atol, k2, k3, k4, k5, k6, xs);
+        k_.k3 = k3;
+        k_.k4 = k4;
+        k_.k5 = k5;
+        k_.k6 = k6;
+        x1 = x1_local;
+        f1 = f1_local;
+        return err;
+      }
     }
 
     /// Continuous extension at t0 + theta h, theta in [0, 1] (Hairer & Wanner, dopri5 CONTD5):
@@ -74,10 +72,10 @@ struct DormandPrince54 {
       if (!dense_ready_) {
         r3_.noalias() = h * f0 - (x1 - x0);
         r5_.noalias() = h * (c(-12715105075.0 / 11282082432.0) * f0 +
-                             c(87487479700.0 / 32700410799.0) * k3_ +
-                             c(-10690763975.0 / 1880347072.0) * k4_ +
-                             c(701980252875.0 / 199316789632.0) * k5_ +
-                             c(-1453857185.0 / 822651844.0) * k6_ +
+                             c(87487479700.0 / 32700410799.0) * k_.k3 +
+                             c(-10690763975.0 / 1880347072.0) * k_.k4 +
+                             c(701980252875.0 / 199316789632.0) * k_.k5 +
+                             c(-1453857185.0 / 822651844.0) * k_.k6 +
                              c(69997945.0 / 29380423.0) * f1);
         dense_ready_ = true;
       }
@@ -87,7 +85,46 @@ struct DormandPrince54 {
     }
 
    private:
-    State k2_, k3_, k4_, k5_, k6_, xs_, r3_, r5_;
+    // Up to 32 bytes per vector (4 doubles): the eight vectors of a step fit 16 SSE registers.
+    static constexpr bool stages_in_registers =
+        State::SizeAtCompileTime != Eigen::Dynamic &&
+        State::SizeAtCompileTime * static_cast<int>(sizeof(Scalar)) <= 32;
+
+    struct Stages {
+      State k2, k3, k4, k5, k6, xs;
+    };
+
+    // The Butcher tableau of the pair, stages k2..k6, scratch xs.
+    static EIGEN_ALWAYS_INLINE Scalar stages(System& sys, const Mode& m, Scalar t, const State& x0,
+                                             const State& f0, Scalar h, State& x1, State& f1,
+                                             Scalar rtol, Scalar atol, State& k2, State& k3,
+                                             State& k4, State& k5, State& k6, State& xs) {
+      const auto c = [](double v) { return static_cast<Scalar>(v); };
+      xs.noalias() = x0 + (h * c(1.0 / 5.0)) * f0;
+      sys.rhs(m, t + h * c(1.0 / 5.0), xs, k2);
+      xs.noalias() = x0 + h * (c(3.0 / 40.0) * f0 + c(9.0 / 40.0) * k2);
+      sys.rhs(m, t + h * c(3.0 / 10.0), xs, k3);
+      xs.noalias() = x0 + h * (c(44.0 / 45.0) * f0 - c(56.0 / 15.0) * k2 + c(32.0 / 9.0) * k3);
+      sys.rhs(m, t + h * c(4.0 / 5.0), xs, k4);
+      xs.noalias() = x0 + h * (c(19372.0 / 6561.0) * f0 - c(25360.0 / 2187.0) * k2 +
+                               c(64448.0 / 6561.0) * k3 - c(212.0 / 729.0) * k4);
+      sys.rhs(m, t + h * c(8.0 / 9.0), xs, k5);
+      xs.noalias() = x0 + h * (c(9017.0 / 3168.0) * f0 - c(355.0 / 33.0) * k2 +
+                               c(46732.0 / 5247.0) * k3 + c(49.0 / 176.0) * k4 -
+                               c(5103.0 / 18656.0) * k5);
+      sys.rhs(m, t + h, xs, k6);
+      x1.noalias() = x0 + h * (c(35.0 / 384.0) * f0 + c(500.0 / 1113.0) * k3 +
+                               c(125.0 / 192.0) * k4 - c(2187.0 / 6784.0) * k5 +
+                               c(11.0 / 84.0) * k6);
+      sys.rhs(m, t + h, x1, f1);
+      xs.noalias() = h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3 +
+                          c(71.0 / 1920.0) * k4 - c(17253.0 / 339200.0) * k5 +
+                          c(22.0 / 525.0) * k6 - c(1.0 / 40.0) * f1);
+      return detail::weighted_rms(xs, x0, x1, rtol, atol);
+    }
+
+    Stages k_;
+    State r3_, r5_;
     bool dense_ready_ = false;
   };
 };

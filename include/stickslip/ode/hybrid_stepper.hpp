@@ -114,6 +114,7 @@ class HybridStepper {
       gt_.resize(ng);
       roots_.resize(ng);
     }
+    guarded_ = ng > 0;
     eval_guards(m, t, x_, ga_, st);
     if (!ga_.allFinite()) return false;
     monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
@@ -152,6 +153,7 @@ class HybridStepper {
   std::vector<Scalar> event_ring_;
   Scalar t0_ = 0;
   long next_sample_ = 0;
+  bool guarded_ = false;  // the current mode has guards (a mode without skips all guard work)
 };
 
 template <class System, class Method>
@@ -347,7 +349,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     const Scalar err = core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
     // An infinite error norm of a finite step is a rejection (e.g. atol = 0 on a zero component).
     bool ok = !std::isnan(err) && x1_.allFinite() && f1_.allFinite();
-    if (ok) {
+    if (ok && guarded_) {
       eval_guards(mode, t1, x1_, gb_, st);
       ok = gb_.allFinite();
     }
@@ -377,7 +379,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     }
     ++st.accepted_steps;
 
-    if (monitor_.any_crossed(gb_)) {
+    if (guarded_ && monitor_.any_crossed(gb_)) {
       const Scalar te = locate_event(mode, t, h, t1, st);
       if (!emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_))
         return finish(r, Status::StoppedByObserver, te, xe_, mode,
@@ -435,8 +437,10 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     t = t1;
     x_.swap(x1_);
     f_.swap(f1_);
-    ga_.swap(gb_);
-    monitor_.update_arming(ga_);
+    if (guarded_) {
+      ga_.swap(gb_);
+      monitor_.update_arming(ga_);
+    }
     core_.new_point();
     if (!obs.on_step(t, x_, mode))
       return finish(r, Status::StoppedByObserver, t, x_, mode,

@@ -15,14 +15,16 @@ namespace detail {
 
 /// RMS of err_i / (atol + rtol * max(|a_i|, |b_i|)) (Hairer, Norsett & Wanner, eq. II.4.11).
 template <class Scalar, class E, class A, class B>
-Scalar weighted_rms(const Eigen::MatrixBase<E>& err, const Eigen::MatrixBase<A>& a,
-                    const Eigen::MatrixBase<B>& b, Scalar rtol, Scalar atol) {
+EIGEN_ALWAYS_INLINE Scalar weighted_rms(const Eigen::MatrixBase<E>& err,
+                                        const Eigen::MatrixBase<A>& a,
+                                        const Eigen::MatrixBase<B>& b, Scalar rtol, Scalar atol) {
   using std::sqrt;
-  // An exactly zero error counts 0 even where the weight is 0 (atol = 0 on a zero component).
-  const Scalar sum = (err.array() == Scalar(0))
-                         .select(Scalar(0), err.array() / (atol + rtol * a.array().abs().max(b.array().abs())))
-                         .square()
-                         .sum();
+  const auto weight = atol + rtol * a.array().abs().max(b.array().abs());
+  Scalar sum = (err.array() / weight).square().sum();
+  // Only a zero weight (atol = 0 on a zero component) can make a finite error give a non-finite
+  // sum: recount with an exactly zero error counting 0 there (0/0), keeping NaN and Inf otherwise.
+  if (!(std::isfinite(sum)))
+    sum = (err.array() == Scalar(0)).select(Scalar(0), err.array() / weight).square().sum();
   return sqrt(sum / static_cast<Scalar>(err.size()));
 }
 
