@@ -183,9 +183,8 @@ class FrictionDampedSystem {
 
     allocate_workspace();
     if (!options_.moving_contact) {
-      // Fixed contact points: the shapes and the Gram matrix never change; compute them once.
+      // Fixed contact points: the shapes never change; evaluate them once.
       for (Index i = 0; i < D_; ++i) evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
-      G_.noalias() = C_.transpose() * C_;
     }
   }
 
@@ -468,16 +467,22 @@ class FrictionDampedSystem {
     dpsi_w_.setZero(n_, D_);
     ddpsi_w_.setZero(n_, D_);
     dpsi_u_.setZero(n_, D_);
-    G_.setZero(D2, D2);
     S_.setZero(D2, D2);
     rhs_.setZero(D2);
     z_.setZero(D2);
-    y_.setZero(D2);
-    cr_.setZero(D2);
     r0_.setZero(n_);
-    h_.setZero(D_);
     d_.setZero(D_);
+    mu_.setZero(D_);
+    F_.setZero(n_, D2);
+    L_.setZero(n_, D2);
+    W_.setZero(n_, D2);
+    A_.setZero(D2);
+    c_.setZero(D2);
+    u_.setZero(D2);
+    unknown_of_.assign(static_cast<std::size_t>(D2), 0);
+    Mn_.setZero(n_, n_);
     lu_ = Eigen::PartialPivLU<Matrix>(D2);
+    lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
     for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y})
       v->setZero(D_);
@@ -494,8 +499,10 @@ class FrictionDampedSystem {
     C_.col(i) = side * v.psi_w;
     C_.col(D_ + i) = v.psi_u;
     dpsi_w_.col(i) = side * v.dpsi_w;
-    ddpsi_w_.col(i) = side * v.ddpsi_w;
-    dpsi_u_.col(i) = v.dpsi_u;
+    if (options_.convective_terms) {  // only the convective terms need psi_w'' and psi_u'
+      ddpsi_w_.col(i) = side * v.ddpsi_w;
+      dpsi_u_.col(i) = v.dpsi_u;
+    }
   }
 
   /// Signed slip coefficient mu_i with f_i = -mu_i N_i for a slipping (or regularised) damper.
@@ -511,6 +518,10 @@ class FrictionDampedSystem {
   }
 
   /// The coupled solve for (q'', N, f, x'') in mode `mode` (docs/model.md, "acceleration solve").
+  /// Known forces (constant N, f = -mu N of a slipping damper) are eliminated first; the U <= 2D
+  /// remaining unknowns u satisfy  A u + L^T q'' = c  with  q'' = r0 + F u  (A diagonal, F and L
+  /// n x U). Solved in the smaller of two equivalent forms: the capacitance (Woodbury) system
+  /// (A + L^T F) u = c - L^T r0, or the mode-space system (I + F A^-1 L^T) q'' = r0 + F A^-1 c.
   void solve(const Mode& mode, Scalar t, const State& x) const {
     const Index n = n_, D = D_;
     const auto q = x.head(n);
@@ -522,10 +533,14 @@ class FrictionDampedSystem {
       r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
 
     const bool moving = options_.moving_contact;
+    const bool convective = options_.convective_terms;
+    Index U = 0;  // number of unknowns
     for (Index i = 0; i < D; ++i) {
-      const Scalar X = moving ? x[contact_offset() + i] : dampers_[static_cast<std::size_t>(i)].contact_coordinate;
-      e.X[i] = X;
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const Damper& dmp = dampers_[iu];
       if (moving) {
+        const Scalar X = x[contact_offset() + i];
+        e.X[i] = X;
         using std::isfinite;
         if (!isfinite(X)) {  // a blown-up trial state: report it as non-finite (no shapes at NaN)
           for (Vector* v : {&e.qdd, &e.N, &e.f, &e.V, &e.Vdot, &e.xdd, &e.slope, &e.y})
@@ -534,27 +549,15 @@ class FrictionDampedSystem {
           return;
         }
         evaluate_shapes(i, X);
+      } else {
+        e.X[i] = dmp.contact_coordinate;
       }
-    }
-    if (moving) G_.noalias() = C_.transpose() * C_;
-    cr_.noalias() = C_.transpose() * r0_;
-
-    const bool convective = options_.convective_terms;
-    S_.setZero();
-    auto add_coupling = [&](Index row, Scalar alpha, Index ia, Scalar beta, Index ib) {
-      // row += (alpha a_ia + beta b_ib)^T C P, with P = diag(I, -I) mapping z = [N; f] to y = [N; -f]
-      S_.row(row).head(D) += alpha * G_.row(ia).head(D) + beta * G_.row(ib).head(D);
-      S_.row(row).tail(D) -= alpha * G_.row(ia).tail(D) + beta * G_.row(ib).tail(D);
-      return alpha * cr_[ia] + beta * cr_[ib];
-    };
-
-    for (Index i = 0; i < D; ++i) {
-      const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
+      const auto a = C_.col(i), b = C_.col(D + i);
       const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
       const Scalar xi = x[x_offset() + i];
       const ContactState s = mode[i];
-      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && s == ContactState::Stick;
-      const Scalar V = stuck ? Scalar(0) : x[xd_offset() + i] - qd.dot(C_.col(D + i));
+      const bool stuck = has_stick_[iu] && s == ContactState::Stick;
+      const Scalar V = stuck ? Scalar(0) : x[xd_offset() + i] - qd.dot(b);
       e.V[i] = V;
       Scalar slope = 0, h = 0, dd = 0;
       if (moving) slope = q.dot(dpsi_w_.col(i));
@@ -563,42 +566,53 @@ class FrictionDampedSystem {
         dd = qd.dot(dpsi_u_.col(i)) * V;
       }
       e.slope[i] = slope;
-      e.y[i] = q.dot(C_.col(i));
-      h_[i] = h;
+      e.y[i] = q.dot(a);
       d_[i] = dd;
-      const Index rN = i, rF = D + i;
-      const bool inertial = inertial_[static_cast<std::size_t>(i)];
-      // Normal-force equation (13-14 with 19 and 22).
-      S_(rN, i) += 1;
-      if (inertial) {
-        if (stuck) {
-          rhs_[rN] = dmp.preload - add_coupling(rN, m, i, Scalar(0), D + i);
+      const bool inertial = inertial_[iu];
+      auto unknown = [&](Index column, Scalar diag, Scalar rhs) {
+        unknown_of_[static_cast<std::size_t>(U)] = column;
+        A_[U] = diag;
+        c_[U] = rhs;
+        return U++;
+      };
+      if (stuck) {  // stick rows (eq 11 with x'' = b^T q''): N_i + m a^T q'' = N0, f_i - m b^T q'' = k x
+        if (inertial) {
+          const Index j = unknown(i, Scalar(1), dmp.preload);
+          F_.col(j) = a;
+          L_.col(j) = m * a;
         } else {
-          const Scalar sc = convective ? slope : Scalar(0);
-          S_(rN, D + i) += sc;
-          rhs_[rN] = dmp.preload - m * h + sc * k * xi + m * sc * dd -
-                     add_coupling(rN, m, i, -m * sc, D + i);
+          e.N[i] = dmp.preload;
+          r0_.noalias() += dmp.preload * a;
         }
-      } else {
-        rhs_[rN] = dmp.preload;
-      }
-      // Friction equation: stick (11 with x'' = b^T q'') or slip (15-16).
-      S_(rF, D + i) += 1;
-      if (stuck) {
-        rhs_[rF] = k * xi - add_coupling(rF, Scalar(0), i, -m, D + i);
-      } else {
-        S_(rF, i) += slip_coefficient(i, s, V);
-        rhs_[rF] = 0;
+        const Index j = unknown(D + i, Scalar(1), k * xi);
+        F_.col(j) = -b;
+        L_.col(j) = -m * b;
+      } else {  // slip rows (15-16 with 19 and 22): f_i = -mu_i N_i
+        const Scalar mu = slip_coefficient(i, s, V);
+        mu_[i] = mu;
+        if (inertial) {
+          const Scalar sc = convective ? slope : Scalar(0);
+          const Index j = unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd);
+          F_.col(j) = a + mu * b;
+          L_.col(j) = m * a - (m * sc) * b;
+        } else {
+          e.N[i] = dmp.preload;
+          e.f[i] = -mu * dmp.preload;
+          r0_.noalias() += dmp.preload * (a + mu * b);
+        }
       }
     }
 
-    lu_.compute(S_);
-    z_.noalias() = lu_.solve(rhs_);
-    e.N = z_.head(D);
-    e.f = z_.tail(D);
-    y_.head(D) = e.N;
-    y_.tail(D) = -e.f;
-    e.qdd.noalias() = r0_ + C_ * y_;
+    if (U > 0) solve_unknowns(U);
+    else e.qdd = r0_;  // every force known (all dampers slipping under constant normal load)
+    for (Index j = 0; j < U; ++j) {
+      const Index col = unknown_of_[static_cast<std::size_t>(j)];
+      (col < D ? e.N[col] : e.f[col - D]) = u_[j];
+    }
+    for (Index i = 0; i < D; ++i) {
+      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick;
+      if (!stuck && inertial_[static_cast<std::size_t>(i)]) e.f[i] = -mu_[i] * e.N[i];
+    }
     for (Index i = 0; i < D; ++i) {
       const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
       const bool stuck = has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick;
@@ -611,7 +625,62 @@ class FrictionDampedSystem {
         e.Vdot[i] = e.xdd[i] - bq - d_[i];
       }
     }
-    e.finite = e.qdd.allFinite() && z_.allFinite();
+    e.finite = e.qdd.allFinite() && e.N.allFinite() && e.f.allFinite();
+  }
+
+  /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to four
+  /// unknowns use a fixed-size 4 x 4 LU (padded with identity rows); the mode-space form needs A
+  /// well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the capacitance form.
+  void solve_unknowns(Index U) const {
+    const Index n = n_, D2 = 2 * D_;
+    Evaluation& e = eval_;
+    const auto F = F_.leftCols(U);
+    const auto L = L_.leftCols(U);
+    const auto A = A_.head(U);
+    const auto c = c_.head(U);
+    auto u = u_.head(U);
+    const double nd = static_cast<double>(n), ud = static_cast<double>(U), pd = static_cast<double>(D2);
+    const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : pd * pd * pd / 3.0);
+    const double mode_space_cost = nd * nd * ud + nd * nd * nd / 3.0;
+    using std::abs;
+    if (mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all()) {
+      // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
+      u = c.cwiseQuotient(A);
+      r0_.noalias() += F * u;
+      W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
+      Mn_.setIdentity();
+      Mn_.noalias() += W_.leftCols(U) * L.transpose();
+      lun_.compute(Mn_);
+      e.qdd.noalias() = lun_.solve(r0_);
+      u = c;
+      u.noalias() -= L.transpose() * e.qdd;
+      u = u.cwiseQuotient(A);
+      return;
+    }
+    // (A + L^T F) u = c - L^T r0, then q'' = r0 + F u.
+    if (U <= 4) {
+      Eigen::Matrix<Scalar, 4, 4> S4 = Eigen::Matrix<Scalar, 4, 4>::Identity();
+      Eigen::Matrix<Scalar, 4, 1> r4 = Eigen::Matrix<Scalar, 4, 1>::Zero();
+      S4.topLeftCorner(U, U).noalias() = L.transpose() * F;
+      S4.diagonal().head(U) += A;
+      r4.head(U) = c;
+      r4.head(U).noalias() -= L.transpose() * r0_;
+      lu4_.compute(S4);
+      const Eigen::Matrix<Scalar, 4, 1> z4 = lu4_.solve(r4);
+      u = z4.head(U);
+    } else {  // padded to the allocated 2D x 2D so that no call allocates
+      S_.setIdentity();
+      rhs_.setZero();
+      S_.topLeftCorner(U, U).noalias() = L.transpose() * F;
+      S_.diagonal().head(U) += A;
+      rhs_.head(U) = c;
+      rhs_.head(U).noalias() -= L.transpose() * r0_;
+      lu_.compute(S_);
+      z_.noalias() = lu_.solve(rhs_);
+      u = z_.head(U);
+    }
+    e.qdd = r0_;
+    e.qdd.noalias() += F * u;
   }
 
   /// Picks consistent states for the dampers in `involved` (and any stuck damper whose capacity
@@ -702,9 +771,14 @@ class FrictionDampedSystem {
   // Workspace of the solve (allocated once; the solve allocates nothing).
   mutable std::vector<typename Shapes::Values> values_;
   mutable std::vector<ElementCursor> cursors_;
-  mutable Matrix C_, dpsi_w_, ddpsi_w_, dpsi_u_, G_, S_;
-  mutable Vector rhs_, z_, y_, cr_, r0_, h_, d_;
-  mutable Eigen::PartialPivLU<Matrix> lu_;
+  mutable Matrix C_, dpsi_w_, ddpsi_w_, dpsi_u_;  // shapes at the contacts (C = [a_1..a_D b_1..b_D])
+  mutable Vector r0_, d_, mu_;
+  // Reduced unknowns of the solve: force directions F, row directions L, diagonal A, right side c.
+  mutable Matrix F_, L_, W_, S_, Mn_;
+  mutable Vector A_, c_, u_, rhs_, z_;
+  mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
+  mutable Eigen::PartialPivLU<Matrix> lu_, lun_;
+  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
   mutable Evaluation eval_;
   bool cache_valid_ = false;
   Scalar cache_t_{};
