@@ -10,14 +10,22 @@ if(STICKSLIP_SANITIZE)
 endif()
 target_link_libraries(stickslip_project_options INTERFACE stickslip::stickslip)
 
-# stickslip_add_gtest(<name> LABEL <label> SOURCES <files...> [TIMEOUT s])
+# stickslip_add_gtest(<name> LABEL <label> SOURCES <files...> [TIMEOUT s] [NO_UNITY])
 # One GoogleTest executable whose tests CTest discovers, each carrying the component label.
+# With STICKSLIP_UNITY_TESTS (default ON) its sources compile as one unity translation unit,
+# unless NO_UNITY (sources whose file-local names clash).
 function(stickslip_add_gtest name)
-  cmake_parse_arguments(ARG "" "LABEL;TIMEOUT" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "NO_UNITY" "LABEL;TIMEOUT" "SOURCES" ${ARGN})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()
   add_executable(${name} ${ARG_SOURCES})
+  if(STICKSLIP_UNITY_TESTS AND NOT ARG_NO_UNITY)
+    # All sources of one test executable in one translation unit: Eigen and GoogleTest are parsed
+    # and instantiated once instead of once per file (test files keep their helpers in named or
+    # per-file namespaces so that they can share the unit).
+    set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
+  endif()
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name} PRIVATE stickslip_project_options GTest::gtest GTest::gtest_main)
   gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} TIMEOUT ${ARG_TIMEOUT}

@@ -6,6 +6,7 @@
 
 #include <cstdio>
 
+namespace parameter_extremes {  // named: both stability files may share one (unity) translation unit
 namespace {
 using namespace stability;
 
@@ -295,3 +296,4 @@ TEST(LiftOff, NormalForceReachingZeroStopsTheRunAtZero) {
 }
 
 }  // namespace
+}  // namespace parameter_extremes
