@@ -4,6 +4,7 @@
 #include "stability/stability_support.hpp"
 
 #include <chrono>
+#include <complex>
 #include <cstdio>
 
 namespace integrator_extremes {  // named: both stability files may share one (unity) translation unit
@@ -105,13 +106,17 @@ TEST(ManyModes, DormandPrinceWithAStepBudgetReportsMaxSteps) {
 }
 
 // ---- fixed step vs. the explicit stability limit ------------------------------------------------
-// 6 modes (omega_max = 1.6e4 rad/s), the paper's 20 N excitation, RK4 with h = factor * 2.83 /
-// omega_max for 2000 steps.
-Outcome rk4_run(double factor, int steps) {
+// 6 modes (omega_max = 1.6e4 rad/s, undamped), the paper's 20 N excitation, RK4 with
+// h = factor * 2.83 / omega_max for `steps` steps. RK4's amplification on the imaginary axis is
+// |R(i y)|^2 = 1 - y^6/72 + y^8/576, so an undamped mode is stable exactly for
+// h omega <= 2 sqrt(2) (kRk4Limit): the reference the check in simulate() is measured against.
+Outcome rk4_run(double factor, int steps, bool check = true) {
   Scene sc(6, 6, 4, 20.0);
   sc.build(sc.paper());
   const double h = factor * kRk4Limit / sc.omega_max();
-  return sc.run(sc.paper(), steps * h, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, h));
+  auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, h);
+  opt.check_stability_limit = check;
+  return sc.run(sc.paper(), steps * h, opt);
 }
 
 TEST(FixedStep, BelowTheStabilityLimitSucceeds) {
@@ -121,37 +126,83 @@ TEST(FixedStep, BelowTheStabilityLimitSucceeds) {
   expect_success_and_checks(o, 1e-3, 0.0);
 }
 
-// Above the limit the highest mode grows by |R(i h omega)| > 1 per step until the dampers'
-// stick/slip switching (an event at every step) bounds it: the run ends as Success with finite
-// values that are wrong. (|R(1.1 x 2.83 i)| = 1.9: saturated after ~50 of the 800 steps.) Only the energy audit shows it (residual ~100 % of the energy scale).
-// This is a limitation, reported in docs/stability.md; the test pins the detection.
-TEST(FixedStep, AboveTheStabilityLimitIsCaughtByTheEnergyAuditOnly) {
-  const Outcome o = rk4_run(1.1, 800);
+// Above the limit simulate() refuses the step before integrating, naming the parameter and the
+// largest stable step; for the undamped top mode that is 2 sqrt(2) / omega_max (closed form above;
+// the bisection in simulate() resolves it to ~1e-16 relative, the parse of 17 printed digits
+// to 1e-15: tolerance 1e-12).
+TEST(FixedStep, AboveTheStabilityLimitIsRefusedNamingTheStep) {
+  for (double factor : {1.001, 1.1, 3.0}) {
+    const Outcome o = rk4_run(factor, 800);
+    SCOPED_TRACE(describe(o));
+    ASSERT_TRUE(o.threw);
+    EXPECT_EQ(o.stats.accepted_steps, 0);
+    EXPECT_NE(o.message.find("options.stepper.fixed_step"), std::string::npos);
+    EXPECT_NE(o.message.find("stability limit"), std::string::npos);
+    const std::string key = "stable up to h = ";
+    const auto p = o.message.find(key);
+    ASSERT_NE(p, std::string::npos);
+    Scene sc(6, 6, 4, 20.0);
+    sc.build(sc.paper());
+    const double h_limit = kRk4Limit / sc.omega_max();
+    EXPECT_NEAR(std::stod(o.message.substr(p + key.size())), h_limit, 1e-12 * h_limit);
+  }
+}
+
+TEST(FixedStep, JustBelowTheLimitIsAccepted) {
+  // 0.999 of the closed-form limit: the check must not refuse a stable step (|R| = 0.9995).
+  const Outcome o = rk4_run(0.999, 50);
   SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  EXPECT_EQ(o.status, Status::Success);
+}
+
+// With the check switched off (to study an unstable step) the highest mode grows by
+// |R(i h omega)| > 1 per step until the dampers' stick/slip switching (an event at every step)
+// bounds it: the run ends as Success with finite values that are wrong. (|R(1.1 x 2.83 i)| = 1.9:
+// saturated after ~50 of the 800 steps.) Only the energy audit shows it (residual ~100 % of the
+// energy scale).
+TEST(FixedStep, UncheckedAboveTheStabilityLimitIsCaughtByTheEnergyAuditOnly) {
+  const Outcome o = rk4_run(1.1, 800, false);
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
   EXPECT_EQ(o.status, Status::Success);
   EXPECT_TRUE(o.finite);
   EXPECT_GT(o.relative_residual(), 0.5);
 }
 
-// The documented wish: a fixed step above the stability limit should not end as Success.
-// DISABLED: the stepper cannot know omega_max and the model does not check the step (see
-// docs/stability.md, "limitations").
-TEST(FixedStep, DISABLED_AboveTheStabilityLimitIsNotSuccess) {
-  const Outcome o = rk4_run(1.1, 800);
-  EXPECT_NE(o.status, Status::Success) << describe(o);
+TEST(FixedStep, UncheckedFarAboveTheStabilityLimitStopsButTheCauseIsMisnamed) {
+  // Check off, 3 times the limit: the blown-up normal force crosses zero (after ~400 steps): the
+  // run stops with a lift-off status (the audit residual ~100 % shows it is numerical).
+  const Outcome o = rk4_run(3.0, 2000, false);
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  EXPECT_EQ(o.status, Status::StoppedBySystem);
+  EXPECT_EQ(o.stop_reason, System::StopReason::LiftOff);
+  EXPECT_GT(o.relative_residual(), 0.5);
 }
 
-TEST(FixedStep, FarAboveTheStabilityLimitStopsButTheCauseIsMisnamed) {
-  // At 3 times the limit the blown-up normal force crosses zero (after ~400 steps): the run
-  // stops with a lift-off status (the audit residual ~100 % shows it is numerical).
-  for (double factor : {3.0}) {
-    const Outcome o = rk4_run(factor, 2000);
-    SCOPED_TRACE(describe(o));
-    EXPECT_FALSE(o.threw);
-    EXPECT_EQ(o.status, Status::StoppedBySystem);
-    EXPECT_EQ(o.stop_reason, System::StopReason::LiftOff);
-    EXPECT_GT(o.relative_residual(), 0.5);
-  }
+// Damping moves the rates off the imaginary axis; the check uses RK4's exact amplification, so a
+// step stable for the damped top mode (zeta 0.1: stable up to h omega = 2.95) is accepted although
+// h omega_max = 2.9 > 2 sqrt(2). Reference:
+// |R(z)| evaluated here independently for the mode's rate z = h omega (-zeta + i sqrt(1-zeta^2)).
+TEST(FixedStep, DampedTopModeUsesTheExactStabilityRegion) {
+  Scene sc(6, 6, 4, 20.0);
+  const double w = sc.s.basis.omega().maxCoeff();
+  Eigen::VectorXd zeta = Eigen::VectorXd::Zero(6);
+  zeta[5] = 0.1;
+  sc.s.basis = sc.s.basis.with_modal_damping(zeta);
+  const double h = 2.9 / w;  // above 2 sqrt(2) / omega
+  const std::complex<double> z = h * w * std::complex<double>(-0.1, std::sqrt(1 - 0.01));
+  const std::complex<double> R = 1.0 + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0;
+  ASSERT_LT(std::abs(R), 1.0);  // the damped top mode is stable at this step
+  // The other modes are lower (h omega_5 well inside the region): the run must be accepted.
+  const Outcome o = sc.run(sc.paper(), 20 * h, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, h));
+  SCOPED_TRACE(describe(o));
+  EXPECT_FALSE(o.threw);
+  // Control: the same step on the undamped frame is refused (|R(2.9 i)| = 1.19 > 1).
+  Scene undamped(6, 6, 4, 20.0);
+  const Outcome u = undamped.run(undamped.paper(), 20 * h, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, h));
+  EXPECT_TRUE(u.threw) << describe(u);
 }
 
 // Regression test of "model: fix a non-finite contact coordinate throwing from rhs": RK4 with the
@@ -160,7 +211,9 @@ TEST(FixedStep, FarAboveTheStabilityLimitStopsButTheCauseIsMisnamed) {
 // through integrate(). It must end as a status, never an exception.
 TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   Scene sc(50, 24, 8, 20.0);
-  const Outcome o = sc.run(sc.paper(), 0.01, options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4));
+  auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4);
+  opt.check_stability_limit = false;  // simulate() would refuse this step (test above)
+  const Outcome o = sc.run(sc.paper(), 0.01, opt);
   SCOPED_TRACE(describe(o));
   EXPECT_FALSE(o.threw);
   ASSERT_EQ(o.status, Status::NonFiniteState);

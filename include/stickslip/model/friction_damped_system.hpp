@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -208,6 +209,32 @@ class FrictionDampedSystem {
   const std::vector<Damper>& dampers() const noexcept { return dampers_; }
   const std::vector<Load>& loads() const noexcept { return loads_; }
   const Vector& omega_squared() const noexcept { return omega2_; }
+  /// Eigenvalues of the linear parts of the equations that an explicit fixed step must resolve
+  /// (upper half-plane of each conjugate pair): every retained mode of eq 25,
+  /// lambda = omega (-zeta + i sqrt(1 - zeta^2)) (two real rates omega (-zeta +- sqrt(zeta^2 - 1))
+  /// when zeta >= 1), and every damper's free oscillator x'' = -k x / m of eq 11 while it slips,
+  /// lambda = i sqrt(k / m). Stuck dampers stiffen the structure further (k b b^T); that shift is
+  /// not included, so these rates bound the fastest rate of a run from below. Used by simulate()
+  /// to refuse a fixed RK4 step above the stability limit.
+  std::vector<std::complex<Scalar>> linear_rates() const {
+    std::vector<std::complex<Scalar>> rates;
+    rates.reserve(static_cast<std::size_t>(n_ + D_));
+    using std::sqrt;
+    for (Index j = 0; j < n_; ++j) {
+      const Scalar w = sqrt(omega2_[j]), zeta = two_zeta_omega_[j] / (Scalar(2) * w);
+      if (!(w > 0)) continue;  // a rigid-body mode has no rate
+      if (zeta < 1) {
+        rates.emplace_back(-zeta * w, w * sqrt(Scalar(1) - zeta * zeta));
+      } else {
+        const Scalar r = w * sqrt(zeta * zeta - Scalar(1));
+        rates.emplace_back(-zeta * w - r, Scalar(0));
+        rates.emplace_back(-zeta * w + r, Scalar(0));
+      }
+    }
+    for (const Damper& d : dampers_)
+      rates.emplace_back(Scalar(0), sqrt(d.effective_stiffness() / d.effective_mass()));
+    return rates;
+  }
   /// Modal row vector of the displacement of point `eps` of `member` along `direction`
   /// (GlobalX/GlobalY/Axial/Transverse; Moment gives the rotation): displacement = psi . q.
   /// The member must carry a damper or a load; throws std::invalid_argument otherwise.
