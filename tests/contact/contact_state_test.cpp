@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string>
 
+namespace contact_contact_state_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using stickslip::ContactState;
@@ -32,3 +33,4 @@ TEST(ContactState, SlipSignIsTheSignOfTheSlidingVelocity) {
 }
 
 }  // namespace
+}  // namespace contact_contact_state_test

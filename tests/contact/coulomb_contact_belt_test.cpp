@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cmath>
 
+namespace contact_coulomb_contact_belt_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::EventLog;
@@ -140,3 +141,4 @@ TEST(BeltStickSlip, LimitCycleMatchesClosedFormRungeKutta4Bisection) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_belt_test

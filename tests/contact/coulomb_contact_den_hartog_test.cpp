@@ -13,6 +13,7 @@
 #include <cmath>
 #include <vector>
 
+namespace contact_coulomb_contact_den_hartog_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::EventLog;
@@ -179,3 +180,4 @@ TEST(DenHartogReference, MatchesThePublishedAmplitudeFormula) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_den_hartog_test

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
+namespace contact_coulomb_contact_energy_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::EventLog;
@@ -104,3 +105,4 @@ TEST(EnergyAudit, RegularisedLawBalances) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_energy_test

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+namespace contact_coulomb_contact_extremes_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::EventLog;
@@ -131,3 +132,4 @@ TEST(ContactExtremes, LiftOffIsReportedAtTheTimeTheNormalForceVanishes) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_extremes_test

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+namespace contact_coulomb_contact_held_mass_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::EventLog;
@@ -175,3 +176,4 @@ TEST(HeldMass, RegularisedLawCreepsAtTheClosedFormSpeed) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_held_mass_test

@@ -17,6 +17,7 @@
 #include <limits>
 #include <random>
 
+namespace contact_coulomb_contact_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using stickslip::CoulombContact;
@@ -257,3 +258,4 @@ TEST(CoulombContactForce, RegularisedLawIgnoresTheStateButLiftOff) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_contact_test

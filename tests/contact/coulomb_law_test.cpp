@@ -6,6 +6,7 @@
 
 #include <limits>
 
+namespace contact_coulomb_law_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::expect_invalid_argument;
@@ -36,3 +37,4 @@ TEST(CoulombLaw, RejectsBadCoefficientsNamingTheParameter) {
 }
 
 }  // namespace
+}  // namespace contact_coulomb_law_test

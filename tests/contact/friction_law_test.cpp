@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+namespace contact_friction_law_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 // A user law with the exact-law interface: mu_k rising linearly with speed (velocity
@@ -64,3 +65,4 @@ TEST(FrictionLawTrait, RejectsIncompleteOrInconsistentLaws) {
 }
 
 }  // namespace
+}  // namespace contact_friction_law_test

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+namespace contact_regularised_law_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::expect_invalid_argument;
@@ -58,3 +59,4 @@ TEST(RegularisedLaw, RejectsBadParametersNamingThem) {
 }
 
 }  // namespace
+}  // namespace contact_regularised_law_test

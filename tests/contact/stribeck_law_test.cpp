@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+namespace contact_stribeck_law_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
 using contact_test::expect_invalid_argument;
@@ -61,3 +62,4 @@ TEST(StribeckLaw, RejectsBadParametersNamingThem) {
 }
 
 }  // namespace
+}  // namespace contact_stribeck_law_test

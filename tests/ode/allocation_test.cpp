@@ -5,30 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
-
+#include "allocation_counter.hpp"
 #include "ode/ode_test_systems.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-// The replaced operators pair malloc with free. GCC's -Wmismatched-new-delete cannot see that the
-// replaced operator new is the one that allocated when it inlines delete into gtest's factories,
-// so it is silenced for this file only (a false positive, not a mismatch).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-#endif
-
-void* operator new(std::size_t n) {
-  ++g_allocations;
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+using stickslip_test::g_allocations;
 
 namespace {
 
