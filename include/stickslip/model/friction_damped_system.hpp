@@ -213,9 +213,11 @@ class FrictionDampedSystem {
   /// (upper half-plane of each conjugate pair): every retained mode of eq 25,
   /// lambda = omega (-zeta + i sqrt(1 - zeta^2)) (two real rates omega (-zeta +- sqrt(zeta^2 - 1))
   /// when zeta >= 1), and every damper's free oscillator x'' = -k x / m of eq 11 while it slips,
-  /// lambda = i sqrt(k / m). Stuck dampers stiffen the structure further (k b b^T); that shift is
-  /// not included, so these rates bound the fastest rate of a run from below. Used by simulate()
-  /// to refuse a fixed RK4 step above the stability limit.
+  /// lambda = i sqrt(k / m). Stuck dampers need no rates of their own: in any stick pattern and
+  /// at any contact point the structure's squared frequencies are Rayleigh quotients
+  /// (q^T Omega^2 q + sum k (b^T q)^2) / (q^T q + sum m (b^T q)^2 + ...), mediants of the omega_j^2
+  /// and the k_i / m_i, so they never exceed the largest of these rates (undamped). Used by
+  /// simulate() to refuse a fixed RK4 step above the stability limit.
   std::vector<std::complex<Scalar>> linear_rates() const {
     std::vector<std::complex<Scalar>> rates;
     rates.reserve(static_cast<std::size_t>(n_ + D_));
