@@ -639,17 +639,15 @@ class FrictionDampedSystem {
       (col < D ? e.N[col] : e.f[col - D]) = u_[j];
     }
     for (Index i = 0; i < D; ++i) {
-      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick;
-      if (!stuck && inertial_[static_cast<std::size_t>(i)]) e.f[i] = -mu_[i] * e.N[i];
-    }
-    for (Index i = 0; i < D; ++i) {
-      const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
-      const bool stuck = has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick;
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const Damper& dmp = dampers_[iu];
+      const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       const Scalar bq = C_.col(D + i).dot(e.qdd);
       if (stuck) {
         e.xdd[i] = bq;
         e.Vdot[i] = 0;
       } else {
+        if (inertial_[iu]) e.f[i] = -mu_[i] * e.N[i];  // N_i was an unknown
         e.xdd[i] = (e.f[i] - dmp.effective_stiffness() * x[x_offset() + i]) / dmp.effective_mass();
         e.Vdot[i] = e.xdd[i] - bq - d_[i];
       }
@@ -671,7 +669,6 @@ class FrictionDampedSystem {
     const double nd = static_cast<double>(n), ud = static_cast<double>(U), pd = static_cast<double>(D2);
     const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : pd * pd * pd / 3.0);
     const double mode_space_cost = nd * nd * ud + nd * nd * nd / 3.0;
-    using std::abs;
     if (mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all()) {
       // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
       u = c.cwiseQuotient(A);
