@@ -245,6 +245,12 @@ TEST(FixedStep, StiffStuckDamperIsCoveredByTheFreeOscillatorRate) {
 // through integrate(). It must end as a status, never an exception.
 TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   Scene sc(50, 24, 8, 20.0);
+  // Which symptom of the blow-up comes first depends on the round-off of the exploding
+  // trajectory: a normal force crossing zero (lift-off) or a contact point passing a member end
+  // can stop the run before anything is NaN. Neither is watched here, so that the run reaches
+  // the non-finite contact coordinate this test is about.
+  sc.model.watch_lift_off = false;
+  sc.model.end_policy = EndPolicy::Extrapolate;
   auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4);
   opt.check_stability_limit = false;  // simulate() would refuse this step (test above)
   const Outcome o = sc.run(sc.paper(), 0.01, opt);

@@ -687,13 +687,17 @@ class FrictionDampedSystem {
     if (U <= 4) {
       Eigen::Matrix<Scalar, 4, 4> S4 = Eigen::Matrix<Scalar, 4, 4>::Identity();
       Eigen::Matrix<Scalar, 4, 1> r4 = Eigen::Matrix<Scalar, 4, 1>::Zero();
-      S4.topLeftCorner(U, U).noalias() = L.transpose() * F;
+      // Coefficient-based products: for a 4 x 4 result GEMM/GEMV packing costs more than it saves.
+      S4.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
       S4.diagonal().head(U) += A;
       r4.head(U) = c;
-      r4.head(U).noalias() -= L.transpose() * r0_;
+      r4.head(U).noalias() -= L.transpose().lazyProduct(r0_);
       lu4_.compute(S4);
       const Eigen::Matrix<Scalar, 4, 1> z4 = lu4_.solve(r4);
       u = z4.head(U);
+      e.qdd = r0_;
+      e.qdd.noalias() += F.lazyProduct(u);
+      return;
     } else {  // padded to the allocated 2D x 2D so that no call allocates
       S_.setIdentity();
       rhs_.setZero();
