@@ -698,17 +698,17 @@ class FrictionDampedSystem {
       e.qdd = r0_;
       e.qdd.noalias() += F.lazyProduct(u);
       return;
-    } else {  // padded to the allocated 2D x 2D so that no call allocates
-      S_.setIdentity();
-      rhs_.setZero();
-      S_.topLeftCorner(U, U).noalias() = L.transpose() * F;
-      S_.diagonal().head(U) += A;
-      rhs_.head(U) = c;
-      rhs_.head(U).noalias() -= L.transpose() * r0_;
-      lu_.compute(S_);
-      z_.noalias() = lu_.solve(rhs_);
-      u = z_.head(U);
     }
+    // Padded to the allocated 2D x 2D so that no call allocates.
+    S_.setIdentity();
+    rhs_.setZero();
+    S_.topLeftCorner(U, U).noalias() = L.transpose() * F;
+    S_.diagonal().head(U) += A;
+    rhs_.head(U) = c;
+    rhs_.head(U).noalias() -= L.transpose() * r0_;
+    lu_.compute(S_);
+    z_.noalias() = lu_.solve(rhs_);
+    u = z_.head(U);
     e.qdd = r0_;
     e.qdd.noalias() += F * u;
   }
