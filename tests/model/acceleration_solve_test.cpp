@@ -250,3 +250,61 @@ TEST_F(PaperEquations, Eq28LeftSlipsRightSticks) {
 }
 
 }  // namespace
+
+namespace {
+// The solve keeps its factorisation while the matrix's inputs (per unknown: column, X, mu,
+// slope) are unchanged. Each call below is checked against the dense reference, which has no
+// memory: a hit (same mode and contact coordinates, new q, q', x, x'), then misses forced by a
+// moved contact point, by another stick/slip pattern with the same number of unknowns, and by a
+// return to the first point after the others. A stale factorisation or right-hand side shows as
+// an O(1) relative error; the bound is the one of the checks above (direct solves of a
+// well-conditioned system, round-off ~1e-13).
+void check_factorisation_reuse(int modes, int num_dampers) {
+  const TScene s = make_t_frame(modes, 20, 8);
+  ModelOptions<double> opt;
+  std::vector<PointDamper<double>> dampers;
+  const double m = 12.0 / (0.5 * 0.46 * 50.0 * 50.0);
+  for (int i = 0; i < num_dampers; ++i)
+    dampers.emplace_back(s.platform, 0.032 * (i + 1) / num_dampers, m, 1e4, 12.0,
+                         CoulombLaw<double>(0.35, 0.3), 0.5);
+  System sys(s.frame, s.basis, dampers, paper_load(s), opt);
+  const Index n = sys.num_modes(), D = sys.num_dampers();
+  std::mt19937 rng(20261124u);
+  std::printf("random states with seed %u\n", 20261124u);
+
+  // Pattern A: damper 0 slips, the others stick; pattern B: damper 1 slips, the others stick
+  // (the same number of unknowns, other columns); pattern C: all stuck.
+  DamperStates A(D), B(D), C(D);
+  for (Index i = 0; i < D; ++i) A[i] = B[i] = C[i] = ContactState::Stick;
+  A[0] = ContactState::SlipPositive;
+  B[1] = ContactState::SlipNegative;
+  const System::State x1 = random_state(sys, rng);
+  System::State x2 = random_state(sys, rng);  // new q, q', x, x' ...
+  x2.segment(sys.contact_offset(), D) = x1.segment(sys.contact_offset(), D);  // ... same X
+  System::State x3 = x2;
+  x3[sys.contact_offset() + D - 1] += 1e-3;  // one stuck damper's contact point moved by 1 mm
+
+  struct Call {
+    const DamperStates* mode;
+    const System::State* x;
+    const char* what;
+  };
+  const Call calls[] = {{&A, &x1, "first"},          {&A, &x2, "hit: X unchanged"},
+                        {&C, &x2, "all stuck"},      {&C, &x3, "miss: X moved"},
+                        {&B, &x3, "miss: pattern B"}, {&A, &x1, "first point again"}};
+  double t = 0.003;
+  for (const Call& c : calls) {
+    t += 0.0011;
+    const auto& e = sys.evaluate(*c.mode, t, *c.x);
+    const VectorXd ref = dense_reference(s, sys, *c.mode, t, *c.x, true, true, opt.convective_terms);
+    const double qscale = ref.head(n).cwiseAbs().maxCoeff();
+    EXPECT_LT((e.qdd - ref.head(n)).cwiseAbs().maxCoeff(), 1e-10 * qscale) << c.what;
+    EXPECT_LT((e.N - ref.segment(n, D)).cwiseAbs().maxCoeff(), 1e-10 * 12.0) << c.what;
+    EXPECT_LT((e.f - ref.segment(n + D, D)).cwiseAbs().maxCoeff(), 1e-10 * 12.0) << c.what;
+  }
+}
+}  // namespace
+
+TEST(AccelerationSolve, FactorisationReuseFixedFourByFour) { check_factorisation_reuse(6, 2); }
+TEST(AccelerationSolve, FactorisationReuseModeSpaceForm) { check_factorisation_reuse(6, 8); }
+TEST(AccelerationSolve, FactorisationReuseCapacitanceForm) { check_factorisation_reuse(24, 8); }

@@ -85,7 +85,10 @@ long allocations_of_rhs(int modes, int dampers, NormalLoad normal_load, bool mov
 
   System::State dx(x.size());
   double t = 0;
-  sys.rhs(patterns[0], t, x, dx);  // any lazy first-use work happens here
+  // A mode's first solve may allocate its exact-size factorisation (transition() and
+  // make_consistent() do it when a run enters the mode, outside any step); every later call
+  // must not allocate.
+  for (const auto& mode : patterns) sys.rhs(mode, t, x, dx);
   const long before = g_allocations.load();
   for (int rep = 0; rep < 20; ++rep)
     for (const auto& mode : patterns) {
@@ -126,6 +129,50 @@ TEST(ModelAllocation, EightDampersSixModesModeSpace) {
 // Eight dampers on 24 modes: the dynamic (padded 2D x 2D) capacitance system.
 TEST(ModelAllocation, EightDampersTwentyFourModesCapacitance) {
   EXPECT_EQ(allocations_of_rhs(24, 8, NormalLoad::Inertial, true), 0);
+}
+
+// A whole run: eight dampers on 24 modes (the exact-size capacitance LUs) switching between
+// stick and slip. The stepper calls rhs through a forwarding system that counts the allocations
+// made inside rhs only; no mode is warmed up first, so this shows that the transitions allocate
+// each new mode's factorisation before any step evaluates it.
+struct RhsAllocationCounter {
+  using Scalar = System::Scalar;
+  using State = System::State;
+  using Mode = System::Mode;
+  System& sys;
+  long allocations = 0;
+  void rhs(const Mode& m, double t, const State& x, State& dxdt) {
+    const long before = g_allocations.load();
+    sys.rhs(m, t, x, dxdt);
+    allocations += g_allocations.load() - before;
+  }
+  Index num_guards(const Mode& m) const { return sys.num_guards(m); }
+  void guards(const Mode& m, double t, const State& x, Eigen::VectorXd& g) { sys.guards(m, t, x, g); }
+  CrossingDirection guard_direction(const Mode& m, Index i) const { return sys.guard_direction(m, i); }
+  TransitionAction transition(Mode& m, const TriggeredGuards& w, double t, State& x) {
+    return sys.transition(m, w, t, x);
+  }
+};
+
+TEST(ModelAllocation, RunThroughSwitchesAllocatesNothingInsideRhs) {
+  Scene s = t_frame(24);
+  std::vector<PointDamper<double>> d;
+  for (int i = 0; i < 8; ++i)
+    d.emplace_back(s.platform, 0.004 * (i + 0.5), 0.004, 1e4, 2.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+  std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(s.blade, 0.05, LoadDirection::GlobalX, 20.0, 200.0)};
+  System sys(s.frame, s.basis, d, loads);
+  System::State x = sys.initial_state();
+  System::Mode mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  RhsAllocationCounter counting{sys};
+  StepperOptions<double> opt;
+  opt.rtol = 1e-6;
+  opt.atol = 1e-10;
+  HybridStepper<RhsAllocationCounter, DormandPrince54> stepper(counting, opt);
+  const auto r = stepper.integrate(mode, 0.0, x, 0.05);
+  ASSERT_TRUE(r.ok()) << r.message;
+  ASSERT_GT(r.stats.events, 8) << "the scene must switch for the test to mean anything";
+  EXPECT_EQ(counting.allocations, 0) << "over " << r.stats.rhs_evaluations << " rhs calls";
 }
 
 }  // namespace

@@ -497,8 +497,11 @@ class FrictionDampedSystem {
     ddpsi_w_.setZero(n_, D_);
     dpsi_u_.setZero(n_, D_);
     S_.setZero(D2, D2);
+    key_.setZero(4 * D2);
+    factor_key_.setZero(4 * D2);
+    factor_unknowns_ = -1;
+    lu_sized_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
     rhs_.setZero(D2);
-    z_.setZero(D2);
     r0_.setZero(n_);
     d_.setZero(D_);
     mu_.setZero(D_);
@@ -510,7 +513,6 @@ class FrictionDampedSystem {
     u_.setZero(D2);
     unknown_of_.assign(static_cast<std::size_t>(D2), 0);
     Mn_.setZero(n_, n_);
-    lu_ = Eigen::PartialPivLU<Matrix>(D2);
     lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
     for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y})
@@ -598,10 +600,13 @@ class FrictionDampedSystem {
       e.y[i] = q.dot(a);
       d_[i] = dd;
       const bool inertial = inertial_[iu];
-      auto unknown = [&](Index column, Scalar diag, Scalar rhs) {
+      // Each unknown's column, A entry and row are fixed by (column, X_i, mu_i, slope_i): the
+      // key under which solve_unknowns() keeps its factorisation.
+      auto unknown = [&](Index column, Scalar diag, Scalar rhs, Scalar mu = 0, Scalar sc = 0) {
         unknown_of_[static_cast<std::size_t>(U)] = column;
         A_[U] = diag;
         c_[U] = rhs;
+        key_.segment(4 * U, 4) << Scalar(column), e.X[i], mu, sc;
         return U++;
       };
       if (stuck) {  // stick rows (eq 11 with x'' = b^T q''): N_i + m a^T q'' = N0, f_i - m b^T q'' = k x
@@ -621,7 +626,7 @@ class FrictionDampedSystem {
         mu_[i] = mu;
         if (inertial) {
           const Scalar sc = convective ? slope : Scalar(0);
-          const Index j = unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd);
+          const Index j = unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
           F_.col(j) = a + mu * b;
           L_.col(j) = m * a - (m * sc) * b;
         } else {
@@ -656,61 +661,83 @@ class FrictionDampedSystem {
   }
 
   /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to four
-  /// unknowns use a fixed-size 4 x 4 LU (padded with identity rows); the mode-space form needs A
-  /// well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the capacitance form.
+  /// unknowns use a fixed-size 4 x 4 LU (padded with identity rows), more an exact-size LU
+  /// allocated by the first solve with that many unknowns (in a run: the transition into the
+  /// mode, which evaluates it; never inside a step); the mode-space
+  /// form needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
+  /// capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
+  /// slope) is unchanged - while the unknowns belong to stuck dampers (X constant) or to a fixed
+  /// contact with a constant slip coefficient - so that such calls cost O(n U + U^2).
   void solve_unknowns(Index U) const {
-    const Index n = n_, D2 = 2 * D_;
+    const Index n = n_;
     Evaluation& e = eval_;
     const auto F = F_.leftCols(U);
     const auto L = L_.leftCols(U);
     const auto A = A_.head(U);
     const auto c = c_.head(U);
     auto u = u_.head(U);
-    const double nd = static_cast<double>(n), ud = static_cast<double>(U), pd = static_cast<double>(D2);
-    const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : pd * pd * pd / 3.0);
-    const double mode_space_cost = nd * nd * ud + nd * nd * nd / 3.0;
-    if (mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all()) {
+    const bool reuse = factor_unknowns_ == U && factor_key_.head(4 * U) == key_.head(4 * U);
+    if (!reuse) {
+      const double nd = static_cast<double>(n), ud = static_cast<double>(U);
+      const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : ud * ud * ud / 3.0);
+      const double mode_space_cost = nd * nd * ud + nd * nd * nd / 3.0;
+      factor_mode_space_ = mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all();
+      factor_unknowns_ = -1;  // valid again once the factorisation below is complete
+    }
+    if (factor_mode_space_) {
       // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
+      if (!reuse) {
+        W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
+        Mn_.setIdentity();
+        Mn_.noalias() += W_.leftCols(U) * L.transpose();
+        lun_.compute(Mn_);
+      }
       u = c.cwiseQuotient(A);
       r0_.noalias() += F * u;
-      W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
-      Mn_.setIdentity();
-      Mn_.noalias() += W_.leftCols(U) * L.transpose();
-      lun_.compute(Mn_);
       e.qdd.noalias() = lun_.solve(r0_);
       u = c;
       u.noalias() -= L.transpose() * e.qdd;
       u = u.cwiseQuotient(A);
-      return;
-    }
-    // (A + L^T F) u = c - L^T r0, then q'' = r0 + F u.
-    if (U <= 4) {
-      Eigen::Matrix<Scalar, 4, 4> S4 = Eigen::Matrix<Scalar, 4, 4>::Identity();
+    } else if (U <= 4) {
+      // (A + L^T F) u = c - L^T r0, then q'' = r0 + F u. Coefficient-based products: for a
+      // 4 x 4 result GEMM/GEMV packing costs more than it saves.
+      if (!reuse) {
+        Eigen::Matrix<Scalar, 4, 4> S4 = Eigen::Matrix<Scalar, 4, 4>::Identity();
+        S4.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
+        S4.diagonal().head(U) += A;
+        lu4_.compute(S4);
+      }
       Eigen::Matrix<Scalar, 4, 1> r4 = Eigen::Matrix<Scalar, 4, 1>::Zero();
-      // Coefficient-based products: for a 4 x 4 result GEMM/GEMV packing costs more than it saves.
-      S4.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
-      S4.diagonal().head(U) += A;
       r4.head(U) = c;
       r4.head(U).noalias() -= L.transpose().lazyProduct(r0_);
-      lu4_.compute(S4);
       const Eigen::Matrix<Scalar, 4, 1> z4 = lu4_.solve(r4);
       u = z4.head(U);
       e.qdd = r0_;
       e.qdd.noalias() += F.lazyProduct(u);
-      return;
+    } else {
+      Eigen::PartialPivLU<Matrix>& lu = sized_lu(U);
+      if (!reuse) {
+        S_.topLeftCorner(U, U).noalias() = L.transpose() * F;
+        S_.diagonal().head(U) += A;
+        lu.compute(S_.topLeftCorner(U, U));
+      }
+      rhs_.head(U) = c;
+      rhs_.head(U).noalias() -= L.transpose() * r0_;
+      u.noalias() = lu.solve(rhs_.head(U));
+      e.qdd = r0_;
+      e.qdd.noalias() += F * u;
     }
-    // Padded to the allocated 2D x 2D so that no call allocates.
-    S_.setIdentity();
-    rhs_.setZero();
-    S_.topLeftCorner(U, U).noalias() = L.transpose() * F;
-    S_.diagonal().head(U) += A;
-    rhs_.head(U) = c;
-    rhs_.head(U).noalias() -= L.transpose() * r0_;
-    lu_.compute(S_);
-    z_.noalias() = lu_.solve(rhs_);
-    u = z_.head(U);
-    e.qdd = r0_;
-    e.qdd.noalias() += F * u;
+    if (!reuse) {
+      factor_key_.head(4 * U) = key_.head(4 * U);
+      factor_unknowns_ = U;
+    }
+  }
+
+  /// The exact-size LU for U > 4 unknowns (allocated on first use only).
+  Eigen::PartialPivLU<Matrix>& sized_lu(Index U) const {
+    Eigen::PartialPivLU<Matrix>& lu = lu_sized_[static_cast<std::size_t>(U)];
+    if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
+    return lu;
   }
 
   /// Picks consistent states for the dampers in `involved` (and any stuck damper whose capacity
@@ -805,9 +832,14 @@ class FrictionDampedSystem {
   mutable Vector r0_, d_, mu_;
   // Reduced unknowns of the solve: force directions F, row directions L, diagonal A, right side c.
   mutable Matrix F_, L_, W_, S_, Mn_;
-  mutable Vector A_, c_, u_, rhs_, z_;
+  mutable Vector A_, c_, u_, rhs_;
   mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
-  mutable Eigen::PartialPivLU<Matrix> lu_, lun_;
+  mutable Eigen::PartialPivLU<Matrix> lun_;
+  mutable std::vector<Eigen::PartialPivLU<Matrix>> lu_sized_;  // [U]: exact-size LU, U > 4
+  // Factorisation reuse: the key of the last factorised matrix and its number of unknowns.
+  mutable Vector key_, factor_key_;
+  mutable Index factor_unknowns_ = -1;
+  mutable bool factor_mode_space_ = false;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
   mutable Evaluation eval_;
   bool cache_valid_ = false;
