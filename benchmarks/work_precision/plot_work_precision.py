@@ -25,6 +25,9 @@ STYLE = {
     "regularised rosenbrock23 1e-5": ("tab:pink", "v", ":"),
     "dopri5+root 3 modes": ("tab:olive", "D", "-."),
     "dopri5+root 4 modes": ("tab:brown", "D", "-."),
+    "rk4+root 2 modes": ("gold", "P", ":"),
+    "rk4+root 3 modes": ("tab:gray", "P", ":"),
+    "rk4+root 4 modes": ("black", "P", ":"),
 }
 
 

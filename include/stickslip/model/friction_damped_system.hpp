@@ -676,7 +676,9 @@ class FrictionDampedSystem {
     const auto A = A_.head(U);
     const auto c = c_.head(U);
     auto u = u_.head(U);
-    const bool reuse = factor_unknowns_ == U && factor_key_.head(4 * U) == key_.head(4 * U);
+    // (std::equal stops at the first difference: a slipping damper's key changes at every call)
+    const bool reuse = factor_unknowns_ == U &&
+                       std::equal(key_.data(), key_.data() + 4 * U, factor_key_.data());
     if (!reuse) {
       const double nd = static_cast<double>(n), ud = static_cast<double>(U);
       const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : ud * ud * ud / 3.0);
