@@ -660,8 +660,8 @@ class FrictionDampedSystem {
     e.finite = e.qdd.allFinite() && e.N.allFinite() && e.f.allFinite();
   }
 
-  /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to four
-  /// unknowns use a fixed-size 4 x 4 LU (padded with identity rows), more an exact-size LU
+  /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to two
+  /// and up to four unknowns use a fixed-size 2 x 2 or 4 x 4 LU (padded with identity rows), more an exact-size LU
   /// allocated by the first solve with that many unknowns (in a run: the transition into the
   /// mode, which evaluates it; never inside a step); the mode-space
   /// form needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
@@ -691,7 +691,10 @@ class FrictionDampedSystem {
       if (!reuse) {
         W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
         Mn_.setIdentity();
-        Mn_.noalias() += W_.leftCols(U) * L.transpose();
+        if (n <= 8)  // a few modes: GEMM packing costs more than the n x n result
+          Mn_.noalias() += W_.leftCols(U).lazyProduct(L.transpose());
+        else
+          Mn_.noalias() += W_.leftCols(U) * L.transpose();
         lun_.compute(Mn_);
       }
       u = c.cwiseQuotient(A);
@@ -700,22 +703,10 @@ class FrictionDampedSystem {
       u = c;
       u.noalias() -= L.transpose() * e.qdd;
       u = u.cwiseQuotient(A);
+    } else if (U <= 2) {
+      solve_small<2>(U, reuse, lu2_);
     } else if (U <= 4) {
-      // (A + L^T F) u = c - L^T r0, then q'' = r0 + F u. Coefficient-based products: for a
-      // 4 x 4 result GEMM/GEMV packing costs more than it saves.
-      if (!reuse) {
-        Eigen::Matrix<Scalar, 4, 4> S4 = Eigen::Matrix<Scalar, 4, 4>::Identity();
-        S4.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
-        S4.diagonal().head(U) += A;
-        lu4_.compute(S4);
-      }
-      Eigen::Matrix<Scalar, 4, 1> r4 = Eigen::Matrix<Scalar, 4, 1>::Zero();
-      r4.head(U) = c;
-      r4.head(U).noalias() -= L.transpose().lazyProduct(r0_);
-      const Eigen::Matrix<Scalar, 4, 1> z4 = lu4_.solve(r4);
-      u = z4.head(U);
-      e.qdd = r0_;
-      e.qdd.noalias() += F.lazyProduct(u);
+      solve_small<4>(U, reuse, lu4_);
     } else {
       Eigen::PartialPivLU<Matrix>& lu = sized_lu(U);
       if (!reuse) {
@@ -733,6 +724,28 @@ class FrictionDampedSystem {
       factor_key_.head(4 * U) = key_.head(4 * U);
       factor_unknowns_ = U;
     }
+  }
+
+  /// The capacitance form for U <= K unknowns in a fixed K x K system padded with identity rows:
+  /// (A + L^T F) u = c - L^T r0, then q'' = r0 + F u. Coefficient-based products: for a K x K
+  /// result GEMM/GEMV packing costs more than it saves.
+  template <int K>
+  void solve_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
+    const auto F = F_.leftCols(U);
+    const auto L = L_.leftCols(U);
+    if (!reuse) {
+      Eigen::Matrix<Scalar, K, K> S = Eigen::Matrix<Scalar, K, K>::Identity();
+      S.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
+      S.diagonal().head(U) += A_.head(U);
+      lu.compute(S);
+    }
+    Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
+    r.head(U) = c_.head(U);
+    r.head(U).noalias() -= L.transpose().lazyProduct(r0_);
+    const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
+    u_.head(U) = z.head(U);
+    eval_.qdd = r0_;
+    eval_.qdd.noalias() += F.lazyProduct(u_.head(U));
   }
 
   /// The exact-size LU for U > 4 unknowns (allocated on first use only).
@@ -842,6 +855,7 @@ class FrictionDampedSystem {
   mutable Vector key_, factor_key_;
   mutable Index factor_unknowns_ = -1;
   mutable bool factor_mode_space_ = false;
+  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 2, 2>> lu2_;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
   mutable Evaluation eval_;
   bool cache_valid_ = false;
