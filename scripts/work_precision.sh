@@ -23,6 +23,7 @@ while [[ $# -gt 0 ]]; do
   esac
   shift
 done
+scripts/deps.sh all   # Eigen, Spectra, Google Benchmark, and python3-matplotlib for the plots
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_BUILD_BENCHMARKS=ON
 targets=(work_precision)
 [[ $micro == 1 ]] && targets+=(model_benchmark)
@@ -31,8 +32,9 @@ mkdir -p "$out"
 "$build/benchmarks/work_precision/work_precision" --out "$out" --threads "$threads"
 /usr/bin/python3 benchmarks/work_precision/plot_work_precision.py "$out"
 if [[ $micro == 1 ]]; then
+  # Medians of 5 repetitions: a shared 2-core VM varies by up to 2x between single runs.
   "$build/benchmarks/model/model_benchmark" --benchmark_out="$out/model_benchmark.json" \
-      --benchmark_out_format=json
+      --benchmark_out_format=json --benchmark_repetitions=5
   /usr/bin/python3 benchmarks/model/micro_table.py "$out/model_benchmark.json" > "$out/model_benchmark.md"
 fi
 echo "work_precision.sh: results in $out"

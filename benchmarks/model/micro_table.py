@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
-"""Markdown tables of model_benchmark's Google Benchmark JSON (one run): the right-hand side of
-FrictionDampedSystem against the bare modal right-hand side (ratio from the same run), and the
-step / event / 20 s rows with their counters.
+"""Markdown tables of model_benchmark's Google Benchmark JSON (one run; the medians when it was
+run with --benchmark_repetitions): the right-hand side of FrictionDampedSystem against the bare
+modal right-hand side (ratio from the same run), and the step / event / 20 s rows with their
+counters.
 
 Usage: /usr/bin/python3 benchmarks/model/micro_table.py model_benchmark.json
 """
@@ -13,15 +14,19 @@ SCALE = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
 
 def main(path):
     data = json.load(open(path))
-    rows = {b["name"]: b for b in data["benchmarks"] if b.get("run_type", "iteration") == "iteration"}
+    # With --benchmark_repetitions the medians (aggregate rows) are used, else the single runs.
+    medians = {b["run_name"]: b for b in data["benchmarks"]
+               if b.get("run_type") == "aggregate" and b.get("aggregate_name") == "median"}
+    rows = medians or {b["name"]: b for b in data["benchmarks"] if b.get("run_type", "iteration") == "iteration"}
 
     def ns(b):
         return b["cpu_time"] * SCALE[b.get("time_unit", "ns")]
 
     ctx = data.get("context", {})
+    reps = f"medians of {next(iter(medians.values())).get('repetitions', '?')} repetitions" if medians else "single runs"
     print(f"Host: {ctx.get('host_name', '?')}, {ctx.get('num_cpus', '?')} CPUs at "
           f"{ctx.get('mhz_per_cpu', '?')} MHz, build {ctx.get('library_build_type', '?')} benchmark library; "
-          f"run {ctx.get('date', '?')}\n")
+          f"run {ctx.get('date', '?')}; {reps}\n")
     print("| n modes | D dampers | bare RHS [ns] | composed, slipping [ns] | ratio | composed, stuck [ns] | ratio |")
     print("|---|---|---|---|---|---|---|")
     for n in (6, 24, 96):

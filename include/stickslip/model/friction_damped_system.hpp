@@ -498,6 +498,7 @@ class FrictionDampedSystem {
     dpsi_u_.setZero(n_, D_);
     S_.setZero(D2, D2);
     key_.setZero(4 * D2);
+    shapes_X_.setConstant(D_, std::numeric_limits<Scalar>::quiet_NaN());  // nothing evaluated yet
     factor_key_.setZero(4 * D2);
     factor_unknowns_ = -1;
     lu_sized_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
@@ -522,7 +523,12 @@ class FrictionDampedSystem {
     involved_.reserve(static_cast<std::size_t>(D_));
   }
 
+  /// Shapes of damper i at contact coordinate X into C_ and the derivative columns. Kept while X
+  /// is unchanged (bitwise): a stuck damper's X is exactly constant over every stage of a stick
+  /// phase, so its shapes are evaluated once per phase.
   void evaluate_shapes(Index i, Scalar X) const {
+    if (shapes_X_[i] == X) return;
+    shapes_X_[i] = X;
     const std::size_t iu = static_cast<std::size_t>(i);
     auto& v = values_[iu];
     shapes_[static_cast<std::size_t>(damper_shape_[iu])].evaluate(X, v, cursors_[iu]);
@@ -853,6 +859,7 @@ class FrictionDampedSystem {
   mutable std::vector<Eigen::PartialPivLU<Matrix>> lu_sized_;  // [U]: exact-size LU, U > 4
   // Factorisation reuse: the key of the last factorised matrix and its number of unknowns.
   mutable Vector key_, factor_key_;
+  mutable Vector shapes_X_;  // contact coordinate at which each damper's shapes were evaluated
   mutable Index factor_unknowns_ = -1;
   mutable bool factor_mode_space_ = false;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 2, 2>> lu2_;
