@@ -667,10 +667,10 @@ class FrictionDampedSystem {
   }
 
   /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to two
-  /// and up to four unknowns use a fixed-size 2 x 2 or 4 x 4 LU (padded with identity rows), more an exact-size LU
-  /// allocated by the first solve with that many unknowns (in a run: the transition into the
-  /// mode, which evaluates it; never inside a step); the mode-space
-  /// form needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
+  /// and up to four unknowns use a fixed-size 2 x 2 or 4 x 4 LU (padded with identity rows); more
+  /// use an exact-size LU allocated by the first solve with that many unknowns (in a run: the
+  /// transition into the mode, which evaluates it; never inside a step). The mode-space form
+  /// needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
   /// capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
   /// slope) is unchanged - while the unknowns belong to stuck dampers (X constant) or to a fixed
   /// contact with a constant slip coefficient - so that such calls cost O(n U + U^2).
