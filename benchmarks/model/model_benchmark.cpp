@@ -81,7 +81,8 @@ void BM_RhsComposed(benchmark::State& st) {
   // Successive calls alternate between two states, as integrator stages do: q, q', x, x' differ,
   // and so do the contact coordinates of slipping dampers (stuck dampers' X is constant in a run).
   // Every call therefore redoes what a stage redoes: the evaluation cache never hits, and the
-  // acceleration solve keeps its factorisation only where a run would (all dampers stuck).
+  // acceleration solve keeps its factorisation, and a damper its shapes, only where a run would
+  // (stuck dampers).
   System::State xb = x;
   xb.head(2 * n + 2 * D) *= 1.0 + 1e-3;
   if (!stuck) xb.segment(sys.contact_offset(), D).array() += 1e-7;
