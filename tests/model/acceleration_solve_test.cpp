@@ -254,11 +254,14 @@ TEST_F(PaperEquations, Eq28LeftSlipsRightSticks) {
 namespace {
 // The solve keeps its factorisation while the matrix's inputs (per unknown: column, X, mu,
 // slope) are unchanged. Each call below is checked against the dense reference, which has no
-// memory: a hit (same mode and contact coordinates, new q, q', x, x'), then misses forced by a
-// moved contact point, by another stick/slip pattern with the same number of unknowns, and by a
-// return to the first point after the others. A stale factorisation or right-hand side shows as
-// an O(1) relative error; the bound is the one of the checks above (direct solves of a
-// well-conditioned system, round-off ~1e-13).
+// memory. The sequence takes every branch of the key: a genuine reuse (all stuck, new q, q', x,
+// x', same X), and refactorisations forced by each key component alone - a moved contact point
+// (X), the same slipping damper reversing its slip direction at the same state (mu), the same
+// pattern at a new q with the same X (the slope s_i of a slipping damper) - each of these three
+// fails the test when left out of the key - then another pattern with the same number of unknowns
+// (other columns, though here X and mu differ too) and a return to an earlier point. A stale
+// factorisation or right-hand side shows as an O(1) relative error; the bound is the one of the
+// checks above (direct solves of a well-conditioned system, round-off ~1e-13).
 void check_factorisation_reuse(int modes, int num_dampers) {
   const TScene s = make_t_frame(modes, 20, 8);
   ModelOptions<double> opt;
@@ -272,26 +275,35 @@ void check_factorisation_reuse(int modes, int num_dampers) {
   std::mt19937 rng(20261124u);
   std::printf("random states with seed %u\n", 20261124u);
 
-  // Pattern A: damper 0 slips, the others stick; pattern B: damper 1 slips, the others stick
-  // (the same number of unknowns, other columns); pattern C: all stuck.
-  DamperStates A(D), B(D), C(D);
-  for (Index i = 0; i < D; ++i) A[i] = B[i] = C[i] = ContactState::Stick;
+  // C: all stuck. A / A': damper 0 slips + / -, the others stick. B: damper 1 slips -, the others
+  // stick (the same number of unknowns as A, other columns).
+  DamperStates A(D), Am(D), B(D), C(D);
+  for (Index i = 0; i < D; ++i) A[i] = Am[i] = B[i] = C[i] = ContactState::Stick;
   A[0] = ContactState::SlipPositive;
+  Am[0] = ContactState::SlipNegative;
   B[1] = ContactState::SlipNegative;
+  const Index xo = sys.contact_offset();
   const System::State x1 = random_state(sys, rng);
   System::State x2 = random_state(sys, rng);  // new q, q', x, x' ...
-  x2.segment(sys.contact_offset(), D) = x1.segment(sys.contact_offset(), D);  // ... same X
+  x2.segment(xo, D) = x1.segment(xo, D);      // ... same X
   System::State x3 = x2;
-  x3[sys.contact_offset() + D - 1] += 1e-3;  // one stuck damper's contact point moved by 1 mm
+  x3[xo + D - 1] += 1e-3;  // one stuck damper's contact point moved by 1 mm
+  System::State x4 = random_state(sys, rng);  // new q (so a new slope s_0) ...
+  x4.segment(xo, D) = x3.segment(xo, D);      // ... same X
 
   struct Call {
     const DamperStates* mode;
     const System::State* x;
     const char* what;
   };
-  const Call calls[] = {{&A, &x1, "first"},          {&A, &x2, "hit: X unchanged"},
-                        {&C, &x2, "all stuck"},      {&C, &x3, "miss: X moved"},
-                        {&B, &x3, "miss: pattern B"}, {&A, &x1, "first point again"}};
+  const Call calls[] = {{&C, &x1, "all stuck"},
+                        {&C, &x2, "reuse: all stuck, same X, new q"},
+                        {&C, &x3, "refactorise: X moved"},
+                        {&A, &x3, "damper 0 slips +"},
+                        {&Am, &x3, "refactorise: mu changed sign"},
+                        {&Am, &x4, "refactorise: slope changed"},
+                        {&B, &x4, "refactorise: pattern B"},
+                        {&C, &x1, "first point again"}};
   double t = 0.003;
   for (const Call& c : calls) {
     t += 0.0011;
