@@ -76,9 +76,11 @@ inline int slip_sign(ContactState s) noexcept {
 ///   V_i = X_i' = x_i' - q'^T b_i  (sliding velocity of the damper relative to the member)
 /// with a_i = psi_w(X_i), b_i = psi_u(X_i), a' = psi_w', a'' = psi_w'', s_i = q^T psi_w'(X_i).
 /// Slip: f_i = -sign(V_i) mu_k N_i (15-16); stick: V_i = 0 and f_i is the constraint force.
-/// All unknowns (q'', N, f, x'') are solved together: q'' = r0 + C y with C = [a_1..a_D b_1..b_D]
-/// and y = [N; -f], which leaves a (2D x 2D) dense system through the Gram matrix C^T C
-/// (the Woodbury/capacitance form of the identity-plus-low-rank mode-space matrix of eqs 26-29).
+/// All unknowns (q'', N, f, x'') are solved together: known forces (constant N, f = -mu N of a
+/// slipping damper) are eliminated, and the U <= 2D remaining ones solved in the cheaper of the
+/// capacitance (Woodbury) form, a U x U system, and the mode-space form of the
+/// identity-plus-low-rank matrix of eqs 26-29; the factorisation is kept over a stick phase
+/// (docs/model.md, "acceleration solve").
 template <class Scalar_, class Law_ = FrictionLawVariant<Scalar_>>
 class FrictionDampedSystem {
  public:
