@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <set>
+#include <utility>
 
 namespace {
 using namespace model_test;
@@ -43,7 +45,11 @@ VectorXd dense_reference(const TScene& s, const System& sys, const DamperStates&
   for (Index i = 0; i < D; ++i) {
     const auto& d = sys.dampers()[static_cast<std::size_t>(i)];
     const double X = moving ? x[sys.contact_offset() + i] : d.contact_coordinate;
-    const Shapes sh = shapes_at(s, X);
+    Shapes sh = shapes_at(s, X);
+    // y_i is measured along side * w (PointDamper::side): a, a' and a'' change sign with it.
+    sh.a *= d.side;
+    sh.da *= d.side;
+    sh.dda *= d.side;
     const double m = d.effective_mass(), k = d.effective_stiffness();
     const bool stuck = mode[i] == ContactState::Stick;
     const double V = stuck ? 0.0 : x[sys.xd_offset() + i] - qd.dot(sh.b);
@@ -117,31 +123,46 @@ void check_against_dense(bool inertial, bool moving, bool convective) {
     }
 }
 
-// Eight dampers spread over the platform in random stick/slip patterns: with 6 modes the solve
-// takes the mode-space form (up to 16 unknowns on 6 modes), with 24 modes the dynamic
-// capacitance form (docs/model.md); the 2-damper checks above cover the fixed 4 x 4 form.
-void check_many_dampers_against_dense(int modes, bool inertial) {
+// Several dampers spread over the platform (every other one pressing from the other face,
+// side = -1) in random stick/slip patterns. Which form of the solve a pattern takes depends on n
+// and U (docs/model.md); each caller names the forms (mode space?, order of the factorised
+// matrix) its patterns must reach, so every path of the solve is checked against the reference:
+// 6 modes, 8 dampers: the padded 8 x 8 mode-space form; 12 modes, 8 dampers: the exact-size
+// mode-space form (U >= 13) and the padded 8 x 8 capacitance form; 24 modes, 8 dampers: the
+// exact-size capacitance form; 24 modes, 3 dampers: the padded 4 x 4 and 8 x 8 capacitance forms.
+// The 2-damper checks above cover the padded 2 x 2 and 4 x 4 forms.
+using Form = std::pair<bool, Index>;
+void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
+                                      const std::set<Form>& must_reach) {
   const TScene s = make_t_frame(modes, 20, 8);
   ModelOptions<double> opt;
   opt.normal_load = inertial ? NormalLoad::Inertial : NormalLoad::Constant;
   std::vector<PointDamper<double>> dampers;
   const double m = 12.0 / (0.5 * 0.46 * 50.0 * 50.0);
-  for (int i = 0; i < 8; ++i)
-    dampers.emplace_back(s.platform, 0.004 * (i + 1), m, 1e4, 12.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+  for (int i = 0; i < num_dampers; ++i) {
+    dampers.emplace_back(s.platform, 0.032 * (i + 1) / num_dampers, m, 1e4, 12.0,
+                         CoulombLaw<double>(0.35, 0.3), 0.5);
+    if (i % 2 == 1) dampers.back().side = -1.0;
+  }
   System sys(s.frame, s.basis, dampers, paper_load(s), opt);
+  std::set<Form> reached;
   const unsigned seed = 20261123u;
   std::printf("random states and patterns with seed %u\n", seed);
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> pick(0, 2);
   const Index n = sys.num_modes(), D = sys.num_dampers();
-  for (int trial = 0; trial < 12; ++trial) {
+  for (int trial = 0; trial < 24; ++trial) {
     DamperStates mode(D);
     for (Index i = 0; i < D; ++i) mode[i] = kStates[pick(rng)];
     if (trial == 0)
       for (Index i = 0; i < D; ++i) mode[i] = ContactState::Stick;  // the largest system, U = 2D
+    if (trial == 1)
+      for (Index i = 0; i < D; ++i) mode[i] = ContactState::SlipNegative;  // the smallest, U = D
     const System::State x = random_state(sys, rng);
     const double t = 0.0071 * (trial + 1);
     const auto& e = sys.evaluate(mode, t, x);
+    if (sys.last_solve().unknowns > 0)
+      reached.insert({sys.last_solve().mode_space, sys.last_solve().system_size});
     const VectorXd ref = dense_reference(s, sys, mode, t, x, inertial, true, opt.convective_terms);
     // Same bounds as above: both are direct solves of one well-conditioned linear system.
     const double qscale = ref.head(n).cwiseAbs().maxCoeff();
@@ -151,16 +172,25 @@ void check_many_dampers_against_dense(int modes, bool inertial) {
     const double xscale = ref.tail(D).cwiseAbs().maxCoeff() + 1e-300;
     EXPECT_LT((e.xdd - ref.tail(D)).cwiseAbs().maxCoeff(), 1e-10 * xscale) << mode.to_string();
   }
+  for (const Form& f : must_reach)
+    EXPECT_EQ(reached.count(f), 1u) << "form not reached: mode_space = " << f.first
+                                    << ", order " << f.second;
 }
 
-TEST(AccelerationSolve, EightDampersModeSpaceFormMatchesDenseReference) {
-  check_many_dampers_against_dense(6, true);
+TEST(AccelerationSolve, EightDampersPaddedModeSpaceFormMatchesDenseReference) {
+  check_many_dampers_against_dense(6, 8, true, {{true, 8}});
+}
+TEST(AccelerationSolve, EightDampersExactModeSpaceFormMatchesDenseReference) {
+  check_many_dampers_against_dense(12, 8, true, {{true, 12}, {false, 8}});
 }
 TEST(AccelerationSolve, EightDampersCapacitanceFormMatchesDenseReference) {
-  check_many_dampers_against_dense(24, true);
+  check_many_dampers_against_dense(24, 8, true, {{false, 16}});
+}
+TEST(AccelerationSolve, ThreeDampersPaddedCapacitanceFormsMatchDenseReference) {
+  check_many_dampers_against_dense(24, 3, true, {{false, 4}, {false, 8}});
 }
 TEST(AccelerationSolve, EightDampersConstantNormalLoadMatchesDenseReference) {
-  check_many_dampers_against_dense(24, false);
+  check_many_dampers_against_dense(24, 8, false, {{false, 8}});
 }
 
 TEST(AccelerationSolve, MatchesDenseReferenceFullModel) { check_against_dense(true, true, true); }
@@ -295,19 +325,21 @@ void check_factorisation_reuse(int modes, int num_dampers) {
     const DamperStates* mode;
     const System::State* x;
     const char* what;
+    bool reused;  // the solve must keep the previous factorisation (SolveInfo::reused)
   };
-  const Call calls[] = {{&C, &x1, "all stuck"},
-                        {&C, &x2, "reuse: all stuck, same X, new q"},
-                        {&C, &x3, "refactorise: X moved"},
-                        {&A, &x3, "damper 0 slips +"},
-                        {&Am, &x3, "refactorise: mu changed sign"},
-                        {&Am, &x4, "refactorise: slope changed"},
-                        {&B, &x4, "refactorise: pattern B"},
-                        {&C, &x1, "first point again"}};
+  const Call calls[] = {{&C, &x1, "all stuck", false},
+                        {&C, &x2, "reuse: all stuck, same X, new q", true},
+                        {&C, &x3, "refactorise: X moved", false},
+                        {&A, &x3, "damper 0 slips +", false},
+                        {&Am, &x3, "refactorise: mu changed sign", false},
+                        {&Am, &x4, "refactorise: slope changed", false},
+                        {&B, &x4, "refactorise: pattern B", false},
+                        {&C, &x1, "first point again", false}};
   double t = 0.003;
   for (const Call& c : calls) {
     t += 0.0011;
     const auto& e = sys.evaluate(*c.mode, t, *c.x);
+    EXPECT_EQ(sys.last_solve().reused, c.reused) << c.what;
     const VectorXd ref = dense_reference(s, sys, *c.mode, t, *c.x, true, true, opt.convective_terms);
     const double qscale = ref.head(n).cwiseAbs().maxCoeff();
     EXPECT_LT((e.qdd - ref.head(n)).cwiseAbs().maxCoeff(), 1e-10 * qscale) << c.what;

@@ -232,6 +232,51 @@ TEST(MemberShapes, LocatesElementWithAndWithoutCursor) {
   }
 }
 
+// locate() gives the element and the shape-function weights with which every row of evaluate()
+// is the element's nodal block times a weight vector (eqs 4-7), under each end policy, and
+// follows the end policy exactly as evaluate() does. The reference is evaluate() itself (its own
+// fused loop); the two sum the same four products in a different order, so they agree to a few
+// ulps of the largest nodal value: 1e-14 relative.
+TEST(MemberShapes, LocateGivesElementBlockAndWeightsOfEveryRow) {
+  std::mt19937_64 rng(test::announced_seed(12));
+  const auto data = random_member(rng, 9, 5, kLength);
+  std::uniform_real_distribution<double> where(-0.2 * kLength, 1.2 * kLength);
+  for (const EndPolicy policy : {EndPolicy::Clamp, EndPolicy::Extrapolate}) {
+    const Shapes shapes(data, policy);
+    ElementCursor cursor, eval_cursor;
+    for (int i = 0; i < 200; ++i) {
+      const double x = i % 7 == 0 ? data.stations(i % data.stations.size()) : where(rng);
+      const auto loc = shapes.locate(x, cursor);
+      EXPECT_EQ(cursor.element, loc.element);
+      EXPECT_EQ(loc.element, shapes.locate_element(x)) << "x = " << x;
+      const auto B = shapes.element_block(loc.element);
+      const auto& w = loc.weights;
+      Eigen::Matrix<double, 6, 1> cu, cdu, cw, cdw, cddw;
+      cu << w.u1, 0, 0, w.u2, 0, 0;
+      cdu << -w.du, 0, 0, w.du, 0, 0;
+      cw << 0, w.w1, w.t1, 0, w.w2, w.t2;
+      cdw << 0, w.dw1, w.dt1, 0, w.dw2, w.dt2;
+      cddw << 0, w.ddw1, w.ddt1, 0, w.ddw2, w.ddt2;
+      Values v;
+      shapes.evaluate(x, v, eval_cursor);
+      // Round-off scale of each row: the sum of the absolute products, |B| |c|.
+      const auto check = [&](const Eigen::Matrix<double, 6, 1>& c, const Eigen::VectorXd& row, const char* name) {
+        const double tol = 1e-14 * (B.cwiseAbs() * c.cwiseAbs()).maxCoeff();
+        EXPECT_EIGEN_NEAR(Eigen::VectorXd(B * c), row, tol) << name << ", " << to_string(policy) << ", x = " << x;
+      };
+      check(cu, v.psi_u, "psi_u");
+      check(cdu, v.dpsi_u, "dpsi_u");
+      check(cw, v.psi_w, "psi_w");
+      check(cdw, v.dpsi_w, "dpsi_w");
+      check(cddw, v.ddpsi_w, "ddpsi_w");
+    }
+  }
+  const Shapes strict(data);
+  ElementCursor cursor;
+  EXPECT_THROW(strict.locate(1.01 * kLength, cursor), std::invalid_argument);
+  EXPECT_THROW(strict.locate(std::nan(""), cursor), std::invalid_argument);
+}
+
 // Throw (default): a point off the member is an error naming the member, eps and the range; the
 // ends themselves are on the member. Non-finite eps is an error under every policy.
 TEST(MemberShapes, ThrowPolicyNamesMemberEpsAndRange) {

@@ -121,6 +121,15 @@ class FrictionDampedSystem {
     bool finite = true;
   };
 
+  /// How the last acceleration solve was done (docs/model.md, "acceleration solve"): for cost
+  /// studies, and for tests that must reach every form.
+  struct SolveInfo {
+    Index unknowns = 0;       ///< U, the forces solved for (0: every force known)
+    bool mode_space = false;  ///< the n x n mode-space form, else the U x U capacitance form
+    Index system_size = 0;    ///< order of the factorised matrix (2, 4, 8 when padded; else n or U)
+    bool reused = false;      ///< the factorisation was kept from an earlier call
+  };
+
   /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
   struct EnergyBalance {
     Scalar mechanical;   ///< E(t): modal kinetic + strain + dampers' kinetic, spring, preload potential
@@ -404,6 +413,9 @@ class FrictionDampedSystem {
     return eval_;
   }
 
+  /// How the most recent solve (the most recent evaluate() that missed its cache) was done.
+  const SolveInfo& last_solve() const noexcept { return solve_info_; }
+
   /// Contact switches logged since construction or the last clear_events().
   const std::vector<ContactEvent>& events() const noexcept { return events_; }
   void clear_events() { events_.clear(); }
@@ -421,6 +433,7 @@ class FrictionDampedSystem {
       const Damper& d = dampers_[static_cast<std::size_t>(i)];
       const Scalar m = d.effective_mass(), k = d.effective_stiffness();
       const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
+      if (options_.moving_contact) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
       const Scalar y = q.dot(C_.col(i));
       E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
       if (inertial_[static_cast<std::size_t>(i)]) {
@@ -515,6 +528,8 @@ class FrictionDampedSystem {
     c_.setZero(D2);
     u_.setZero(D2);
     unknown_of_.assign(static_cast<std::size_t>(D2), 0);
+    element_.assign(static_cast<std::size_t>(D_), 0);
+    weight_u_.setZero(2, D_);
     Mn_.setZero(n_, n_);
     lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
@@ -573,7 +588,7 @@ class FrictionDampedSystem {
 
     const bool moving = options_.moving_contact;
     const bool convective = options_.convective_terms;
-    Index U = 0;  // number of unknowns
+    num_unknowns_ = 0;
     for (Index i = 0; i < D; ++i) {
       const std::size_t iu = static_cast<std::size_t>(i);
       const Damper& dmp = dampers_[iu];
@@ -587,15 +602,19 @@ class FrictionDampedSystem {
           e.finite = false;
           return;
         }
-        evaluate_shapes(i, X);
       } else {
         e.X[i] = dmp.contact_coordinate;
       }
+      const ContactState s = mode[i];
+      const bool stuck = has_stick_[iu] && s == ContactState::Stick;
+      if (moving && !stuck) {  // the contact moves at every call: element-space products
+        moving_damper(i, mode, x);
+        continue;
+      }
+      if (moving) evaluate_shapes(i, e.X[i]);  // kept over a stick phase (X constant)
       const auto a = C_.col(i), b = C_.col(D + i);
       const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
       const Scalar xi = x[x_offset() + i];
-      const ContactState s = mode[i];
-      const bool stuck = has_stick_[iu] && s == ContactState::Stick;
       const Scalar V = stuck ? Scalar(0) : x[xd_offset() + i] - qd.dot(b);
       e.V[i] = V;
       Scalar slope = 0, h = 0, dd = 0;
@@ -608,25 +627,16 @@ class FrictionDampedSystem {
       e.y[i] = q.dot(a);
       d_[i] = dd;
       const bool inertial = inertial_[iu];
-      // Each unknown's column, A entry and row are fixed by (column, X_i, mu_i, slope_i): the
-      // key under which solve_unknowns() keeps its factorisation.
-      auto unknown = [&](Index column, Scalar diag, Scalar rhs, Scalar mu = 0, Scalar sc = 0) {
-        unknown_of_[static_cast<std::size_t>(U)] = column;
-        A_[U] = diag;
-        c_[U] = rhs;
-        key_.segment(4 * U, 4) << Scalar(column), e.X[i], mu, sc;
-        return U++;
-      };
       if (stuck) {  // stick rows (eq 11 with x'' = b^T q''): N_i + m a^T q'' = N0, f_i - m b^T q'' = k x
         if (inertial) {
-          const Index j = unknown(i, Scalar(1), dmp.preload);
+          const Index j = add_unknown(i, Scalar(1), dmp.preload, Scalar(0), Scalar(0));
           F_.col(j) = a;
           L_.col(j) = m * a;
         } else {
           e.N[i] = dmp.preload;
           r0_.noalias() += dmp.preload * a;
         }
-        const Index j = unknown(D + i, Scalar(1), k * xi);
+        const Index j = add_unknown(i, Scalar(1), k * xi, Scalar(0), Scalar(0), D + i);
         F_.col(j) = -b;
         L_.col(j) = -m * b;
       } else {  // slip rows (15-16 with 19 and 22): f_i = -mu_i N_i
@@ -634,7 +644,7 @@ class FrictionDampedSystem {
         mu_[i] = mu;
         if (inertial) {
           const Scalar sc = convective ? slope : Scalar(0);
-          const Index j = unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
+          const Index j = add_unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
           F_.col(j) = a + mu * b;
           L_.col(j) = m * a - (m * sc) * b;
         } else {
@@ -645,6 +655,8 @@ class FrictionDampedSystem {
       }
     }
 
+    const Index U = num_unknowns_;
+    solve_info_ = SolveInfo{};
     if (U > 0) solve_unknowns(U);
     else e.qdd = r0_;  // every force known (all dampers slipping under constant normal load)
     for (Index j = 0; j < U; ++j) {
@@ -655,7 +667,13 @@ class FrictionDampedSystem {
       const std::size_t iu = static_cast<std::size_t>(i);
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
-      const Scalar bq = C_.col(D + i).dot(e.qdd);
+      Scalar bq;
+      if (moving && !stuck) {  // b^T q'' = u1 B_0^T q'' + u2 B_3^T q'' (element space)
+        const auto B = shapes_[static_cast<std::size_t>(damper_shape_[iu])].element_block(element_[iu]);
+        bq = weight_u_(0, i) * B.col(0).dot(e.qdd) + weight_u_(1, i) * B.col(3).dot(e.qdd);
+      } else {
+        bq = C_.col(D + i).dot(e.qdd);
+      }
       if (stuck) {
         e.xdd[i] = bq;
         e.Vdot[i] = 0;
@@ -666,6 +684,102 @@ class FrictionDampedSystem {
       }
     }
     e.finite = e.qdd.allFinite() && e.N.allFinite() && e.f.allFinite();
+  }
+
+  /// One slipping damper with a moving contact (its X changes at every call): the same rows as
+  /// solve()'s slip branch, from the element's n x 6 nodal block B and the shape-function weights
+  /// at X (MemberShapes::locate). Every shape vector is B times a 6-vector of weights, so the
+  /// projections need only P = B^T [q q'] (one n x 6 x 2 product) and the two columns of the solve
+  /// are F_j = B (c_a + mu c_b), L_j = B (m c_a - m s c_b): 26 n multiply-adds and no shape vectors,
+  /// against 31 n for evaluating the five shape vectors and projecting them one by one.
+  void moving_damper(Index i, const Mode& mode, const State& x) const {
+    using Vec6 = Eigen::Matrix<Scalar, 6, 1>;
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const Index n = n_;
+    const Damper& dmp = dampers_[iu];
+    Evaluation& e = eval_;
+    const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
+    const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
+    const auto B = shapes.element_block(loc.element);
+    const auto& w = loc.weights;
+    element_[iu] = loc.element;
+    weight_u_(0, i) = w.u1;
+    weight_u_(1, i) = w.u2;
+    const Scalar sd = dmp.side;  // y_i is measured along side * w
+    Vec6 ca, cb;
+    ca << Scalar(0), sd * w.w1, sd * w.t1, Scalar(0), sd * w.w2, sd * w.t2;
+    cb << w.u1, Scalar(0), Scalar(0), w.u2, Scalar(0), Scalar(0);
+    // P = B^T [q q'] (q and q' are adjacent in x).
+    const auto q = x.head(n), qd = x.segment(n, n);
+    Eigen::Matrix<Scalar, 6, 2> P;
+    if (n <= 12) {  // a few modes: one fused pass (a dot product's set-up costs more than its work)
+      const Scalar* b0 = &B.coeffRef(0, 0);
+      const Index stride = B.outerStride();
+      Scalar s0[6] = {}, s1[6] = {};
+      for (Index j = 0; j < n; ++j) {
+        const Scalar qj = q[j], qdj = qd[j];
+        for (int r = 0; r < 6; ++r) {
+          const Scalar bj = b0[r * stride + j];
+          s0[r] += qj * bj;
+          s1[r] += qdj * bj;
+        }
+      }
+      for (int r = 0; r < 6; ++r) {
+        P(r, 0) = s0[r];
+        P(r, 1) = s1[r];
+      }
+    } else {
+      for (int r = 0; r < 6; ++r) {
+        P(r, 0) = B.col(r).dot(q);
+        P(r, 1) = B.col(r).dot(qd);
+      }
+    }
+    const Scalar wp1 = P(1, 0), wp2 = P(2, 0), wp4 = P(4, 0), wp5 = P(5, 0);  // w-part of B^T q
+    const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
+    const Scalar xi = x[x_offset() + i];
+    const Scalar V = x[xd_offset() + i] - (w.u1 * P(0, 1) + w.u2 * P(3, 1));  // x' - b^T q'
+    e.V[i] = V;
+    const Scalar slope = sd * (w.dw1 * wp1 + w.dt1 * wp2 + w.dw2 * wp4 + w.dt2 * wp5);
+    Scalar h = 0, dd = 0;
+    if (options_.convective_terms) {
+      const Scalar dw_qd = sd * (w.dw1 * P(1, 1) + w.dt1 * P(2, 1) + w.dw2 * P(4, 1) + w.dt2 * P(5, 1));
+      const Scalar ddw_q = sd * (w.ddw1 * wp1 + w.ddt1 * wp2 + w.ddw2 * wp4 + w.ddt2 * wp5);
+      h = Scalar(2) * dw_qd * V + ddw_q * V * V;
+      dd = w.du * (P(3, 1) - P(0, 1)) * V;
+    }
+    e.slope[i] = slope;
+    e.y[i] = ca.dot(P.col(0));
+    d_[i] = dd;
+    const Scalar mu = slip_coefficient(i, mode[i], V);
+    mu_[i] = mu;
+    const Vec6 cf = ca + mu * cb;
+    if (inertial_[iu]) {
+      const Scalar sc = options_.convective_terms ? slope : Scalar(0);
+      const Index j = add_unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
+      const Vec6 cl = m * ca - (m * sc) * cb;
+      F_.col(j) = cf[0] * B.col(0) + cf[1] * B.col(1) + cf[2] * B.col(2) + cf[3] * B.col(3) +
+                  cf[4] * B.col(4) + cf[5] * B.col(5);
+      L_.col(j) = cl[0] * B.col(0) + cl[1] * B.col(1) + cl[2] * B.col(2) + cl[3] * B.col(3) +
+                  cl[4] * B.col(4) + cl[5] * B.col(5);
+    } else {
+      e.N[i] = dmp.preload;
+      e.f[i] = -mu * dmp.preload;
+      const Vec6 c = dmp.preload * cf;
+      r0_ += c[0] * B.col(0) + c[1] * B.col(1) + c[2] * B.col(2) + c[3] * B.col(3) + c[4] * B.col(4) +
+             c[5] * B.col(5);
+    }
+  }
+
+  /// Appends an unknown (column of z = [N; f], A entry, right side) of damper i; its key
+  /// (column, X_i, mu_i, slope_i) fixes its column, A entry and row for the factorisation reuse.
+  Index add_unknown(Index i, Scalar diag, Scalar rhs, Scalar mu, Scalar sc, Index column = -1) const {
+    const Index U = num_unknowns_;
+    if (column < 0) column = i;
+    unknown_of_[static_cast<std::size_t>(U)] = column;
+    A_[U] = diag;
+    c_[U] = rhs;
+    key_.segment(4 * U, 4) << Scalar(column), eval_.X[i], mu, sc;
+    return num_unknowns_++;
   }
 
   /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to two
@@ -689,12 +803,17 @@ class FrictionDampedSystem {
                        std::equal(key_.data(), key_.data() + 4 * U, factor_key_.data());
     if (!reuse) {
       const double nd = static_cast<double>(n), ud = static_cast<double>(U);
-      const double capacitance_cost = nd * ud * ud + (U <= 4 ? 0.0 : ud * ud * ud / 3.0);
-      const double mode_space_cost = nd * nd * ud + nd * nd * nd / 3.0;
+      // Products + LU, the LU at the size actually factorised (fixed 2, 4 or 8 when padded).
+      const auto lu_cost = [](double size) { return size * size * size / 3.0; };
+      const double capacitance_cost =
+          nd * ud * ud + lu_cost(U <= 2 ? 2.0 : U <= 4 ? 4.0 : U <= 8 ? 8.0 : ud);
+      const double mode_space_cost = nd * nd * ud + lu_cost(n <= 8 ? 8.0 : nd);
       factor_mode_space_ = mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all();
       factor_unknowns_ = -1;  // valid again once the factorisation below is complete
     }
-    if (factor_mode_space_) {
+    if (factor_mode_space_ && n <= 8) {
+      solve_mode_space_small<8>(U, reuse, lu8_);
+    } else if (factor_mode_space_) {
       // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
       if (!reuse) {
         W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
@@ -715,6 +834,8 @@ class FrictionDampedSystem {
       solve_small<2>(U, reuse, lu2_);
     } else if (U <= 4) {
       solve_small<4>(U, reuse, lu4_);
+    } else if (U <= 8) {
+      solve_small<8>(U, reuse, lu8_);
     } else {
       Eigen::PartialPivLU<Matrix>& lu = sized_lu(U);
       if (!reuse) {
@@ -732,6 +853,10 @@ class FrictionDampedSystem {
       factor_key_.head(4 * U) = key_.head(4 * U);
       factor_unknowns_ = U;
     }
+    solve_info_.unknowns = U;
+    solve_info_.mode_space = factor_mode_space_;
+    solve_info_.system_size = factor_mode_space_ ? (n <= 8 ? 8 : n) : (U <= 2 ? 2 : U <= 4 ? 4 : U <= 8 ? 8 : U);
+    solve_info_.reused = reuse;
   }
 
   /// The capacitance form for U <= K unknowns in a fixed K x K system padded with identity rows:
@@ -756,7 +881,33 @@ class FrictionDampedSystem {
     eval_.qdd.noalias() += F.lazyProduct(u_.head(U));
   }
 
-  /// The exact-size LU for U > 4 unknowns (allocated on first use only).
+  /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows:
+  /// (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
+  template <int K>
+  void solve_mode_space_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
+    const Index n = n_;
+    const auto F = F_.leftCols(U);
+    const auto L = L_.leftCols(U);
+    const auto A = A_.head(U);
+    auto u = u_.head(U);
+    if (!reuse) {
+      W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
+      Eigen::Matrix<Scalar, K, K> M = Eigen::Matrix<Scalar, K, K>::Identity();
+      M.topLeftCorner(n, n).noalias() += W_.leftCols(U).lazyProduct(L.transpose());
+      lu.compute(M);
+    }
+    u = c_.head(U).cwiseQuotient(A);
+    Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
+    r.head(n) = r0_;
+    r.head(n).noalias() += F.lazyProduct(u);
+    const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
+    eval_.qdd = z.head(n);
+    u = c_.head(U);
+    u.noalias() -= L.transpose().lazyProduct(eval_.qdd);
+    u = u.cwiseQuotient(A);
+  }
+
+  /// The exact-size LU for U > 8 unknowns (allocated on first use only).
   Eigen::PartialPivLU<Matrix>& sized_lu(Index U) const {
     Eigen::PartialPivLU<Matrix>& lu = lu_sized_[static_cast<std::size_t>(U)];
     if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
@@ -857,6 +1008,10 @@ class FrictionDampedSystem {
   mutable Matrix F_, L_, W_, S_, Mn_;
   mutable Vector A_, c_, u_, rhs_;
   mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
+  mutable Index num_unknowns_ = 0;
+  // Moving slipping dampers (moving_damper): element of the contact and the weights of u1, u2.
+  mutable std::vector<Index> element_;
+  mutable Eigen::Matrix<Scalar, 2, Eigen::Dynamic> weight_u_;
   mutable Eigen::PartialPivLU<Matrix> lun_;
   mutable std::vector<Eigen::PartialPivLU<Matrix>> lu_sized_;  // [U]: exact-size LU, U > 4
   // Factorisation reuse: the key of the last factorised matrix and its number of unknowns.
@@ -866,7 +1021,9 @@ class FrictionDampedSystem {
   mutable bool factor_mode_space_ = false;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 2, 2>> lu2_;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
+  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 8, 8>> lu8_;  // capacitance U <= 8 or mode space n <= 8
   mutable Evaluation eval_;
+  mutable SolveInfo solve_info_;
   bool cache_valid_ = false;
   Scalar cache_t_{};
   Mode cache_mode_;

@@ -174,6 +174,28 @@ class MemberShapes {
     return cursor.element;
   }
 
+  /// Where eps lies: the element holding it (after the end policy) and the shape-function
+  /// weights there, so that with B = element_block(element) every row vector of evaluate() is
+  /// B times a weight vector (eqs 4-7): psi_u = B (u1, 0, 0, u2, 0, 0)^T,
+  /// psi_w = B (0, w1, t1, 0, w2, t2)^T, and so on. Lets a caller form only the products it needs
+  /// (e.g. psi^T q = weights . (B^T q)) without the five n-vectors. O(1) with a cursor still in
+  /// the element or a neighbour; updates the cursor. Throws as evaluate().
+  struct Location {
+    Eigen::Index element;
+    ElementShapeFunctions<Scalar> weights;
+  };
+  Location locate(Scalar eps, ElementCursor& cursor) const {
+    const Scalar x = admit(eps, "MemberShapes::locate");
+    cursor.element = find_element(x, cursor.element);
+    return Location{cursor.element, shape_functions(cursor.element, x)};
+  }
+
+  /// The local nodal values of element e's two nodes over the modes, an n x 6 block with columns
+  /// (u1, w1, theta1, u2, w2, theta2) (a view into this object). No range check.
+  auto element_block(Eigen::Index e) const noexcept {
+    return nodal_.template middleCols<6>(3 * e);
+  }
+
   /// Generalised force on each mode of a point load at eps (local axes): axial force Fa [N]
   /// along u, transverse force Ft [N] along w and moment M [N m] about Z:
   ///     Q = psi_u(eps) Fa + psi_w(eps) Ft + psi_w'(eps) M       (paper eq. 25 right-hand side)
@@ -327,11 +349,6 @@ class MemberShapes {
   ElementShapeFunctions<Scalar> shape_functions(Eigen::Index e, Scalar x) const noexcept {
     const Scalar le = element_lengths_(e);
     return ElementShapeFunctions<Scalar>((x - stations_(e)) / le, le);
-  }
-
-  /// The element's local nodal values, n x 6, columns (u1, w1, theta1, u2, w2, theta2).
-  auto element_block(Eigen::Index e) const noexcept {
-    return nodal_.template middleCols<6>(3 * e);
   }
 
   /// Local consistent load (u1, w1, theta1, u2, w2, theta2) of a point load at x in element e.
