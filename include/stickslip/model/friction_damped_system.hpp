@@ -166,6 +166,14 @@ class FrictionDampedSystem {
       shapes_.emplace_back(model, member, basis,
                            options_.end_policy == EndPolicy::Clamp ? EndPolicy::Clamp : EndPolicy::Extrapolate);
       shape_members_.push_back(member);
+      {  // the member's nodal values transposed (3 per node x n): an element's 6 x n block has
+         // each mode's six values contiguous, for the projections of moving_damper()
+        const Shapes& sh = shapes_.back();
+        Matrix t(3 * (sh.num_elements() + 1), n_);
+        for (Index el = 0; el < sh.num_elements(); ++el)
+          t.template middleRows<6>(3 * el) = sh.element_block(el).transpose();
+        nodal_t_.push_back(std::move(t));
+      }
       shape_direction_.emplace_back(model.member(member).cos, model.member(member).sin);
       return static_cast<Index>(shapes_.size() - 1);
     };
@@ -709,31 +717,16 @@ class FrictionDampedSystem {
     Vec6 ca, cb;
     ca << Scalar(0), sd * w.w1, sd * w.t1, Scalar(0), sd * w.w2, sd * w.t2;
     cb << w.u1, Scalar(0), Scalar(0), w.u2, Scalar(0), Scalar(0);
-    // P = B^T [q q'] (q and q' are adjacent in x).
-    const auto q = x.head(n), qd = x.segment(n, n);
-    Eigen::Matrix<Scalar, 6, 2> P;
-    if (n <= 12) {  // a few modes: one fused pass (a dot product's set-up costs more than its work)
-      const Scalar* b0 = &B.coeffRef(0, 0);
-      const Index stride = B.outerStride();
-      Scalar s0[6] = {}, s1[6] = {};
-      for (Index j = 0; j < n; ++j) {
-        const Scalar qj = q[j], qdj = qd[j];
-        for (int r = 0; r < 6; ++r) {
-          const Scalar bj = b0[r * stride + j];
-          s0[r] += qj * bj;
-          s1[r] += qdj * bj;
-        }
-      }
-      for (int r = 0; r < 6; ++r) {
-        P(r, 0) = s0[r];
-        P(r, 1) = s1[r];
-      }
-    } else {
-      for (int r = 0; r < 6; ++r) {
-        P(r, 0) = B.col(r).dot(q);
-        P(r, 1) = B.col(r).dot(qd);
-      }
+    // P = B^T [q q'], accumulated mode by mode from the transposed block (six contiguous values
+    // per mode: packet operations, no horizontal sums).
+    const auto Bt = nodal_t_[static_cast<std::size_t>(damper_shape_[iu])].template middleRows<6>(3 * loc.element);
+    Vec6 Pq = Vec6::Zero(), Pqd = Vec6::Zero();
+    for (Index j = 0; j < n; ++j) {
+      Pq.noalias() += x[j] * Bt.col(j);
+      Pqd.noalias() += x[n + j] * Bt.col(j);
     }
+    Eigen::Matrix<Scalar, 6, 2> P;
+    P << Pq, Pqd;
     const Scalar wp1 = P(1, 0), wp2 = P(2, 0), wp4 = P(4, 0), wp5 = P(5, 0);  // w-part of B^T q
     const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
     const Scalar xi = x[x_offset() + i];
@@ -782,10 +775,11 @@ class FrictionDampedSystem {
     return num_unknowns_++;
   }
 
-  /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. Up to two
-  /// and up to four unknowns use a fixed-size 2 x 2 or 4 x 4 LU (padded with identity rows); more
-  /// use an exact-size LU allocated by the first solve with that many unknowns (in a run: the
-  /// transition into the mode, which evaluates it; never inside a step). The mode-space form
+  /// Solves for the U unknowns and q'' (see solve()), in the cheaper of the two forms. A system
+  /// of order up to 8 (U unknowns, or n modes in the mode-space form) uses a fixed-size 2, 4, 6
+  /// or 8 LU padded with identity rows (padded_order); a larger capacitance system an exact-size
+  /// LU allocated by the first solve with that many unknowns (in a run: the transition into the
+  /// mode, which evaluates it; never inside a step). The mode-space form
   /// needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
   /// capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
   /// slope) is unchanged - while the unknowns belong to stuck dampers (X constant) or to a fixed
@@ -803,25 +797,28 @@ class FrictionDampedSystem {
                        std::equal(key_.data(), key_.data() + 4 * U, factor_key_.data());
     if (!reuse) {
       const double nd = static_cast<double>(n), ud = static_cast<double>(U);
-      // Products + LU, the LU at the size actually factorised (fixed 2, 4 or 8 when padded).
-      const auto lu_cost = [](double size) { return size * size * size / 3.0; };
-      const double capacitance_cost =
-          nd * ud * ud + lu_cost(U <= 2 ? 2.0 : U <= 4 ? 4.0 : U <= 8 ? 8.0 : ud);
-      const double mode_space_cost = nd * nd * ud + lu_cost(n <= 8 ? 8.0 : nd);
+      // Products + LU, the LU at the order actually factorised (padded_order: 2, 4, 6 or 8).
+      const auto lu_cost = [](Index order) { const double o = static_cast<double>(order); return o * o * o / 3.0; };
+      const double capacitance_cost = nd * ud * ud + lu_cost(padded_order(U));
+      const double mode_space_cost = nd * nd * ud + lu_cost(padded_order(n));
       factor_mode_space_ = mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all();
       factor_unknowns_ = -1;  // valid again once the factorisation below is complete
     }
-    if (factor_mode_space_ && n <= 8) {
+    const Index order = padded_order(factor_mode_space_ ? n : U);
+    if (factor_mode_space_ && order == 2) {
+      solve_mode_space_small<2>(U, reuse, lu2_);
+    } else if (factor_mode_space_ && order == 4) {
+      solve_mode_space_small<4>(U, reuse, lu4_);
+    } else if (factor_mode_space_ && order == 6) {
+      solve_mode_space_small<6>(U, reuse, lu6_);
+    } else if (factor_mode_space_ && order == 8) {
       solve_mode_space_small<8>(U, reuse, lu8_);
     } else if (factor_mode_space_) {
       // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
       if (!reuse) {
         W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
         Mn_.setIdentity();
-        if (n <= 8)  // a few modes: GEMM packing costs more than the n x n result
-          Mn_.noalias() += W_.leftCols(U).lazyProduct(L.transpose());
-        else
-          Mn_.noalias() += W_.leftCols(U) * L.transpose();
+        Mn_.noalias() += W_.leftCols(U) * L.transpose();
         lun_.compute(Mn_);
       }
       u = c.cwiseQuotient(A);
@@ -830,11 +827,13 @@ class FrictionDampedSystem {
       u = c;
       u.noalias() -= L.transpose() * e.qdd;
       u = u.cwiseQuotient(A);
-    } else if (U <= 2) {
+    } else if (order == 2) {
       solve_small<2>(U, reuse, lu2_);
-    } else if (U <= 4) {
+    } else if (order == 4) {
       solve_small<4>(U, reuse, lu4_);
-    } else if (U <= 8) {
+    } else if (order == 6) {
+      solve_small<6>(U, reuse, lu6_);
+    } else if (order == 8) {
       solve_small<8>(U, reuse, lu8_);
     } else {
       Eigen::PartialPivLU<Matrix>& lu = sized_lu(U);
@@ -855,7 +854,7 @@ class FrictionDampedSystem {
     }
     solve_info_.unknowns = U;
     solve_info_.mode_space = factor_mode_space_;
-    solve_info_.system_size = factor_mode_space_ ? (n <= 8 ? 8 : n) : (U <= 2 ? 2 : U <= 4 ? 4 : U <= 8 ? 8 : U);
+    solve_info_.system_size = order;
     solve_info_.reused = reuse;
   }
 
@@ -906,6 +905,12 @@ class FrictionDampedSystem {
     u.noalias() -= L.transpose().lazyProduct(eval_.qdd);
     u = u.cwiseQuotient(A);
   }
+
+  /// Order of the matrix factorised for m unknowns (capacitance form) or m modes (mode space):
+  /// up to 8, the next of 2, 4, 6, 8 (a fixed-size LU, padded with identity rows: fixed sizes
+  /// let Eigen unroll what a dynamic LU of the same order spends in loop and call overhead);
+  /// beyond, m itself (an exact-size dynamic LU).
+  static Index padded_order(Index m) noexcept { return m <= 8 ? m + (m & 1) : m; }
 
   /// The exact-size LU for U > 8 unknowns (allocated on first use only).
   Eigen::PartialPivLU<Matrix>& sized_lu(Index U) const {
@@ -992,6 +997,7 @@ class FrictionDampedSystem {
   Index n_ = 0, D_ = 0;
   Vector omega2_, two_zeta_omega_;
   std::vector<Shapes> shapes_;
+  std::vector<Matrix> nodal_t_;  // per shape: the member's nodal values transposed, 3 (nodes) x n
   std::vector<Index> shape_members_;
   std::vector<std::pair<Scalar, Scalar>> shape_direction_;  // member (cos, sin)
   std::vector<Index> damper_shape_;
@@ -1021,7 +1027,8 @@ class FrictionDampedSystem {
   mutable bool factor_mode_space_ = false;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 2, 2>> lu2_;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
-  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 8, 8>> lu8_;  // capacitance U <= 8 or mode space n <= 8
+  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 6, 6>> lu6_;
+  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 8, 8>> lu8_;
   mutable Evaluation eval_;
   mutable SolveInfo solve_info_;
   bool cache_valid_ = false;
