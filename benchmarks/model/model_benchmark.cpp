@@ -60,17 +60,17 @@ Eigen::VectorXd random_modal_state(Index n) {
   return qqd;
 }
 
-void BM_RhsComposed(benchmark::State& st) {
-  const Index n = st.range(0), D = st.range(1);
-  const bool stuck = st.range(2) != 0;
+/// The composed right-hand side; `Sys` is FrictionDampedSystem<double> or its fixed-Modes form.
+template <class Sys>
+void rhs_composed(benchmark::State& st, Index n, Index D, bool stuck) {
   RhsFrame f = make_frame(n, D);
   std::vector<PointDamper<double>> dampers;
   for (Index i = 0; i < D; ++i)
     dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3));
-  System sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
-  System::State x = sys.initial_state();
+  Sys sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
+  typename Sys::State x = sys.initial_state();
   x.head(2 * n) = random_modal_state(n);
-  System::Mode mode(D);
+  typename Sys::Mode mode(D);
   for (Index i = 0; i < D; ++i) {
     const double sign = i % 2 == 0 ? 1.0 : -1.0;
     const double follow = x.segment(n, n).dot(sys.point_shape(f.member, f.X[static_cast<std::size_t>(i)], LoadDirection::Axial));
@@ -83,11 +83,11 @@ void BM_RhsComposed(benchmark::State& st) {
   // Every call therefore redoes what a stage redoes: the evaluation cache never hits, and the
   // acceleration solve keeps its factorisation, and a damper its shapes, only where a run would
   // (stuck dampers).
-  System::State xb = x;
+  typename Sys::State xb = x;
   xb.head(2 * n + 2 * D) *= 1.0 + 1e-3;
   if (!stuck) xb.segment(sys.contact_offset(), D).array() += 1e-7;
-  const System::State* states[2] = {&x, &xb};
-  System::State dx(x.size());
+  const typename Sys::State* states[2] = {&x, &xb};
+  typename Sys::State dx(x.size());
   double t = 0;
   long k = 0;
   for (auto _ : st) {
@@ -97,6 +97,15 @@ void BM_RhsComposed(benchmark::State& st) {
     benchmark::ClobberMemory();
   }
   st.SetLabel(stuck ? "stuck" : "slipping");
+}
+
+void BM_RhsComposed(benchmark::State& st) {
+  rhs_composed<System>(st, st.range(0), st.range(1), st.range(2) != 0);
+}
+
+/// The composed right-hand side with the number of modes fixed at compile time (Modes = 6).
+void BM_RhsComposedFixed6(benchmark::State& st) {
+  rhs_composed<FrictionDampedSystem<double, FrictionLawVariant<double>, 6>>(st, 6, st.range(0), st.range(1) != 0);
 }
 
 /// The bare modal right-hand side with the same moving-shape evaluations and no contact algebra:
@@ -125,8 +134,37 @@ void BM_RhsBare(benchmark::State& st) {
   }
 }
 
+/// The same with a compile-time number of modes (MemberShapes<double, 6>, fixed-size vectors).
+void BM_RhsBareFixed6(benchmark::State& st) {
+  constexpr int n = 6;
+  const Index D = st.range(0);
+  RhsFrame f = make_frame(n, D);
+  const MemberShapes<double, n> shapes(f.frame, f.member, f.basis, EndPolicy::Extrapolate);
+  std::vector<ShapeValues<double, n>> values(static_cast<std::size_t>(D));
+  std::vector<ElementCursor> cursors(static_cast<std::size_t>(D));
+  const Eigen::Matrix<double, n, 1> omega2 = f.basis.omega().array().square().matrix();
+  Eigen::VectorXd x(2 * n + D);
+  Eigen::Matrix<double, 2 * n, 1> dx;
+  x.head(2 * n) = random_modal_state(n);
+  for (Index i = 0; i < D; ++i) x[2 * n + i] = f.X[static_cast<std::size_t>(i)];
+  const Eigen::VectorXd N = Eigen::VectorXd::Constant(D, 10.0), fr = Eigen::VectorXd::Constant(D, 3.0);
+  for (auto _ : st) {
+    dx.head<n>() = x.segment<n>(n);
+    dx.tail<n>().noalias() = -omega2.cwiseProduct(x.head<n>());
+    for (Index i = 0; i < D; ++i) {
+      auto& v = values[static_cast<std::size_t>(i)];
+      shapes.evaluate(x[2 * n + i], v, cursors[static_cast<std::size_t>(i)]);
+      dx.tail<n>().noalias() += N[i] * v.psi_w - fr[i] * v.psi_u;
+    }
+    benchmark::DoNotOptimize(dx.data());
+    benchmark::ClobberMemory();
+  }
+}
+
 BENCHMARK(BM_RhsBare)->ArgsProduct({{6, 24, 96}, {2, 8, 32}});
+BENCHMARK(BM_RhsBareFixed6)->Arg(2)->Arg(8)->Arg(32);
 BENCHMARK(BM_RhsComposed)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}});
+BENCHMARK(BM_RhsComposedFixed6)->ArgsProduct({{2, 8, 32}, {0, 1}});
 
 // ---- the default blade scene: one step, one located event ---------------------------------------
 

@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <memory>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace {
@@ -31,8 +33,9 @@ Shapes shapes_at(const TScene& s, double X) {
 }
 
 // Dense reference: unknowns u = [q'' (n), N (D), f (D), x'' (D)].
-VectorXd dense_reference(const TScene& s, const System& sys, const DamperStates& mode, double t,
-                         const System::State& x, bool inertial, bool moving, bool convective) {
+template <class Sys>
+VectorXd dense_reference(const TScene& s, const Sys& sys, const DamperStates& mode, double t,
+                         const typename Sys::State& x, bool inertial, bool moving, bool convective) {
   const Index n = sys.num_modes(), D = sys.num_dampers(), U = n + 3 * D;
   MatrixXd A = MatrixXd::Zero(U, U);
   VectorXd r = VectorXd::Zero(U);
@@ -132,7 +135,9 @@ void check_against_dense(bool inertial, bool moving, bool convective) {
 // exact-size capacitance form; 24 modes, 3 dampers: the 4 x 4 and 6 x 6 capacitance forms
 // (padded with identity rows for U = 3, 5); 7 modes, 8 dampers: the mode-space form padded to
 // 8 x 8. The 2-damper checks above cover the 2 x 2 and 4 x 4 forms.
+// Sys is System or its form with the number of modes fixed at compile time (Modes = modes).
 using Form = std::pair<bool, Index>;
+template <class Sys = System>
 void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
                                       const std::set<Form>& must_reach) {
   const TScene s = make_t_frame(modes, 20, 8);
@@ -145,7 +150,7 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
                          CoulombLaw<double>(0.35, 0.3), 0.5);
     if (i % 2 == 1) dampers.back().side = -1.0;
   }
-  System sys(s.frame, s.basis, dampers, paper_load(s), opt);
+  Sys sys(s.frame, s.basis, dampers, paper_load(s), opt);
   std::set<Form> reached;
   const unsigned seed = 20261123u;
   std::printf("random states and patterns with seed %u\n", seed);
@@ -159,7 +164,7 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
       for (Index i = 0; i < D; ++i) mode[i] = ContactState::Stick;  // the largest system, U = 2D
     if (trial == 1)
       for (Index i = 0; i < D; ++i) mode[i] = ContactState::SlipNegative;  // the smallest, U = D
-    const System::State x = random_state(sys, rng);
+    const typename Sys::State x = random_state(sys, rng);
     const double t = 0.0071 * (trial + 1);
     const auto& e = sys.evaluate(mode, t, x);
     if (sys.last_solve().unknowns > 0)
@@ -173,9 +178,12 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
     const double xscale = ref.tail(D).cwiseAbs().maxCoeff() + 1e-300;
     EXPECT_LT((e.xdd - ref.tail(D)).cwiseAbs().maxCoeff(), 1e-10 * xscale) << mode.to_string();
   }
+  std::string seen;
+  for (const Form& f : reached)
+    seen += " (" + std::string(f.first ? "mode space" : "capacitance") + ", " + std::to_string(f.second) + ")";
   for (const Form& f : must_reach)
     EXPECT_EQ(reached.count(f), 1u) << "form not reached: mode_space = " << f.first
-                                    << ", order " << f.second;
+                                    << ", order " << f.second << "; reached:" << seen;
 }
 
 TEST(AccelerationSolve, EightDampersPaddedModeSpaceFormMatchesDenseReference) {
@@ -192,6 +200,32 @@ TEST(AccelerationSolve, ThreeDampersPaddedCapacitanceFormsMatchDenseReference) {
 }
 TEST(AccelerationSolve, EightDampersOnSevenModesPaddedModeSpaceFormMatchesDenseReference) {
   check_many_dampers_against_dense(7, 8, true, {{true, 8}});
+}
+
+// The number of modes fixed at compile time: the same reference and the same forms, through the
+// fixed-size views of the solve (Modes = 6 and 7: fixed mode-space systems; Modes = 12: the
+// dynamic mode-space LU and the fixed capacitance form with fixed-row products; Modes = 24 with
+// three dampers: the 4 x 4 and 6 x 6 capacitance forms).
+template <int M>
+using FixedSystem = FrictionDampedSystem<double, FrictionLawVariant<double>, M>;
+TEST(AccelerationSolve, FixedModesMatchDenseReferenceInEveryForm) {
+  check_many_dampers_against_dense<FixedSystem<6>>(6, 8, true, {{true, 6}});
+  check_many_dampers_against_dense<FixedSystem<7>>(7, 8, true, {{true, 8}});
+  check_many_dampers_against_dense<FixedSystem<12>>(12, 8, true, {{true, 12}, {false, 8}});
+  check_many_dampers_against_dense<FixedSystem<24>>(24, 3, true, {{false, 4}, {false, 6}});
+  check_many_dampers_against_dense<FixedSystem<6>>(6, 8, false, {{false, 4}, {true, 6}});
+}
+
+// A fixed Modes must match the basis: a clear error naming it, not a wrong-sized view.
+TEST(AccelerationSolve, FixedModesRejectsBasisOfOtherSize) {
+  const TScene s = make_t_frame(6, 20, 8);
+  try {
+    FixedSystem<4> sys(s.frame, s.basis, paper_dampers(s, 12.0), paper_load(s));
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("Modes = 4"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("basis"), std::string::npos) << e.what();
+  }
 }
 TEST(AccelerationSolve, EightDampersConstantNormalLoadMatchesDenseReference) {
   check_many_dampers_against_dense(24, 8, false, {{false, 8}});

@@ -40,6 +40,28 @@ TEST(Stops, LiftOffStopsWithNamedStatusAtZeroNormalForce) {
   EXPECT_LT(std::abs(e.N[0]), 1e-6 * 1e-3);
 }
 
+// A located event in a state that is finite but whose forces overflow (a blown-up run: modal
+// coordinates of 1e305, omega^2 q = inf): the transition cannot choose contact states. It must
+// neither throw (CoulombContact::decide rejects a non-finite N) nor change the mode; it proceeds,
+// and the stepper's finiteness check after the transition ends the run with NonFiniteState.
+TEST(Stops, TransitionInOverflowingStateLeavesTheModeToTheFinitenessCheck) {
+  const TScene s = make_t_frame();
+  System sys(s.frame, s.basis, paper_dampers(s, 12.0), paper_load(s));
+  System::State x = sys.initial_state();
+  x.head(sys.num_modes()).setConstant(1e305);  // omega^2 q overflows in every contact state
+  DamperStates mode(2);
+  mode[0] = ContactState::SlipPositive;
+  mode[1] = ContactState::Stick;
+  const DamperStates before = mode;
+  ASSERT_TRUE(x.allFinite());
+  ASSERT_FALSE(sys.evaluate(mode, 0.0, x).finite);  // the premise: finite state, overflowing forces
+  TransitionAction action;
+  EXPECT_NO_THROW(action = sys.transition(mode, TriggeredGuards{0}, 0.0, x));
+  EXPECT_FALSE(action.stop);
+  EXPECT_EQ(mode, before);
+  EXPECT_TRUE(sys.events().empty());
+}
+
 // Dampers 0.1 mm from either end of the platform, with low friction so that they slide: one of
 // the contacts reaches an end.
 std::vector<PointDamper<double>> near_ends(const TScene& s) {

@@ -55,9 +55,10 @@ inline std::vector<PointLoad<double>> paper_load(const TScene& s, double amplitu
 }
 
 /// A random state with modal amplitudes ~ typical of the blade (1e-4) and damper motion.
-inline System::State random_state(const System& sys, std::mt19937& rng) {
+template <class Sys = System>
+typename Sys::State random_state(const Sys& sys, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  System::State x = sys.initial_state();
+  typename Sys::State x = sys.initial_state();
   const Index n = sys.num_modes();
   for (Index j = 0; j < n; ++j) {
     x[j] = 1e-4 * u(rng);

@@ -242,7 +242,9 @@ TEST(FixedStep, StiffStuckDamperIsCoveredByTheFreeOscillatorRate) {
 // Regression test of "model: fix a non-finite contact coordinate throwing from rhs": RK4 with the
 // paper's step 1e-4 s on 50 modes (h omega_max = 81, 29x the limit) blows up; the NaN contact
 // coordinate of a trial stage used to throw std::invalid_argument out of MemberShapes::evaluate
-// through integrate(). It must end as a status, never an exception.
+// through integrate(). It must end as a status, never an exception. (A later variant: an event
+// located in a finite state whose forces overflow threw from CoulombContact::decide through the
+// transition; see Stops.TransitionInOverflowingStateLeavesTheModeToTheFinitenessCheck.)
 TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   Scene sc(50, 24, 8, 20.0);
   // Which symptom of the blow-up comes first depends on the round-off of the exploding
@@ -257,7 +259,11 @@ TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   SCOPED_TRACE(describe(o));
   EXPECT_FALSE(o.threw);
   ASSERT_EQ(o.status, Status::NonFiniteState);
-  EXPECT_NE(o.message.find("became non-finite"), std::string::npos);
+  // Found inside a step ("became non-finite") or, when an event was located first in a finite
+  // state whose forces overflow, right after its transition ("not finite after the transition").
+  EXPECT_TRUE(o.message.find("became non-finite") != std::string::npos ||
+              o.message.find("not finite after the transition") != std::string::npos)
+      << o.message;
   expect_message_time(o);
   EXPECT_LT(o.t, 0.01);
 }

@@ -81,11 +81,19 @@ inline int slip_sign(ContactState s) noexcept {
 /// capacitance (Woodbury) form, a U x U system, and the mode-space form of the
 /// identity-plus-low-rank matrix of eqs 26-29; the factorisation is kept over a stick phase
 /// (docs/model.md, "acceleration solve").
-template <class Scalar_, class Law_ = FrictionLawVariant<Scalar_>>
+///
+/// `Modes` fixes the number of retained modes at compile time (default Eigen::Dynamic: any
+/// number, given by the basis): the hot loops of the solve then work on fixed-size views, which
+/// for a few modes costs less than the loop and call overhead of dynamic sizes (docs/model.md).
+/// The state, outputs and interface are the same for either choice.
+template <class Scalar_, class Law_ = FrictionLawVariant<Scalar_>, int Modes = Eigen::Dynamic>
 class FrictionDampedSystem {
+  static_assert(Modes == Eigen::Dynamic || Modes > 0, "FrictionDampedSystem: Modes must be > 0 or Dynamic");
+
  public:
   using Scalar = Scalar_;
   using Law = Law_;
+  static constexpr int modes_at_compile_time = Modes;
   using State = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Vector = State;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
@@ -148,6 +156,11 @@ class FrictionDampedSystem {
     n_ = basis.size();
     D_ = static_cast<Index>(dampers_.size());
     if (n_ < 1) detail::throw_invalid("FrictionDampedSystem", "basis must hold >= 1 mode", n_);
+    if (Modes != Eigen::Dynamic && n_ != Modes)
+      detail::throw_invalid("FrictionDampedSystem",
+                            "basis must hold exactly Modes = " + std::to_string(Modes) +
+                                " modes (use ModalBasis::truncated), basis size",
+                            n_);
     if (D_ > DamperStates::max_dampers)
       detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
     if (!options_.moving_contact) options_.convective_terms = false;
@@ -677,8 +690,9 @@ class FrictionDampedSystem {
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       Scalar bq;
       if (moving && !stuck) {  // b^T q'' = u1 B_0^T q'' + u2 B_3^T q'' (element space)
-        const auto B = shapes_[static_cast<std::size_t>(damper_shape_[iu])].element_block(element_[iu]);
-        bq = weight_u_(0, i) * B.col(0).dot(e.qdd) + weight_u_(1, i) * B.col(3).dot(e.qdd);
+        const auto B = element_block(iu, element_[iu]);
+        const auto qdd = modal(e.qdd);
+        bq = weight_u_(0, i) * B.col(0).dot(qdd) + weight_u_(1, i) * B.col(3).dot(qdd);
       } else {
         bq = C_.col(D + i).dot(e.qdd);
       }
@@ -708,7 +722,7 @@ class FrictionDampedSystem {
     Evaluation& e = eval_;
     const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
     const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
-    const auto B = shapes.element_block(loc.element);
+    const auto B = element_block(iu, loc.element);
     const auto& w = loc.weights;
     element_[iu] = loc.element;
     weight_u_(0, i) = w.u1;
@@ -719,11 +733,12 @@ class FrictionDampedSystem {
     cb << w.u1, Scalar(0), Scalar(0), w.u2, Scalar(0), Scalar(0);
     // P = B^T [q q'], accumulated mode by mode from the transposed block (six contiguous values
     // per mode: packet operations, no horizontal sums).
-    const auto Bt = nodal_t_[static_cast<std::size_t>(damper_shape_[iu])].template middleRows<6>(3 * loc.element);
+    const auto Bt = nodal_t_[static_cast<std::size_t>(damper_shape_[iu])].template block<6, Modes>(3 * loc.element, 0, 6, n);
+    const auto q = x.template segment<Modes>(0, n), qd = x.template segment<Modes>(n, n);
     Vec6 Pq = Vec6::Zero(), Pqd = Vec6::Zero();
     for (Index j = 0; j < n; ++j) {
-      Pq.noalias() += x[j] * Bt.col(j);
-      Pqd.noalias() += x[n + j] * Bt.col(j);
+      Pq.noalias() += q[j] * Bt.col(j);
+      Pqd.noalias() += qd[j] * Bt.col(j);
     }
     Eigen::Matrix<Scalar, 6, 2> P;
     P << Pq, Pqd;
@@ -750,15 +765,15 @@ class FrictionDampedSystem {
       const Scalar sc = options_.convective_terms ? slope : Scalar(0);
       const Index j = add_unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
       const Vec6 cl = m * ca - (m * sc) * cb;
-      F_.col(j) = cf[0] * B.col(0) + cf[1] * B.col(1) + cf[2] * B.col(2) + cf[3] * B.col(3) +
+      modal(F_.col(j)) = cf[0] * B.col(0) + cf[1] * B.col(1) + cf[2] * B.col(2) + cf[3] * B.col(3) +
                   cf[4] * B.col(4) + cf[5] * B.col(5);
-      L_.col(j) = cl[0] * B.col(0) + cl[1] * B.col(1) + cl[2] * B.col(2) + cl[3] * B.col(3) +
+      modal(L_.col(j)) = cl[0] * B.col(0) + cl[1] * B.col(1) + cl[2] * B.col(2) + cl[3] * B.col(3) +
                   cl[4] * B.col(4) + cl[5] * B.col(5);
     } else {
       e.N[i] = dmp.preload;
       e.f[i] = -mu * dmp.preload;
       const Vec6 c = dmp.preload * cf;
-      r0_ += c[0] * B.col(0) + c[1] * B.col(1) + c[2] * B.col(2) + c[3] * B.col(3) + c[4] * B.col(4) +
+      modal(r0_) += c[0] * B.col(0) + c[1] * B.col(1) + c[2] * B.col(2) + c[3] * B.col(3) + c[4] * B.col(4) +
              c[5] * B.col(5);
     }
   }
@@ -805,14 +820,12 @@ class FrictionDampedSystem {
       factor_unknowns_ = -1;  // valid again once the factorisation below is complete
     }
     const Index order = padded_order(factor_mode_space_ ? n : U);
-    if (factor_mode_space_ && order == 2) {
-      solve_mode_space_small<2>(U, reuse, lu2_);
-    } else if (factor_mode_space_ && order == 4) {
-      solve_mode_space_small<4>(U, reuse, lu4_);
-    } else if (factor_mode_space_ && order == 6) {
-      solve_mode_space_small<6>(U, reuse, lu6_);
-    } else if (factor_mode_space_ && order == 8) {
-      solve_mode_space_small<8>(U, reuse, lu8_);
+    if (factor_mode_space_ && order <= 8) {
+      // (a fixed Modes is at most the padded order; the other sizes are never reached)
+      if constexpr (fits_order<2>()) if (order == 2) solve_mode_space_small<2>(U, reuse, lu2_);
+      if constexpr (fits_order<4>()) if (order == 4) solve_mode_space_small<4>(U, reuse, lu4_);
+      if constexpr (fits_order<6>()) if (order == 6) solve_mode_space_small<6>(U, reuse, lu6_);
+      if constexpr (fits_order<8>()) if (order == 8) solve_mode_space_small<8>(U, reuse, lu8_);
     } else if (factor_mode_space_) {
       // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
       if (!reuse) {
@@ -863,8 +876,9 @@ class FrictionDampedSystem {
   /// result GEMM/GEMV packing costs more than it saves.
   template <int K>
   void solve_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
-    const auto F = F_.leftCols(U);
-    const auto L = L_.leftCols(U);
+    const auto F = modal_cols(F_, U);
+    const auto L = modal_cols(L_, U);
+    const auto r0 = modal(r0_);
     if (!reuse) {
       Eigen::Matrix<Scalar, K, K> S = Eigen::Matrix<Scalar, K, K>::Identity();
       S.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
@@ -873,11 +887,12 @@ class FrictionDampedSystem {
     }
     Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
     r.head(U) = c_.head(U);
-    r.head(U).noalias() -= L.transpose().lazyProduct(r0_);
+    r.head(U).noalias() -= L.transpose().lazyProduct(r0);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
     u_.head(U) = z.head(U);
-    eval_.qdd = r0_;
-    eval_.qdd.noalias() += F.lazyProduct(u_.head(U));
+    auto qdd = modal(eval_.qdd);
+    qdd = r0;
+    qdd.noalias() += F.lazyProduct(u_.head(U));
   }
 
   /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows:
@@ -885,24 +900,27 @@ class FrictionDampedSystem {
   template <int K>
   void solve_mode_space_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
     const Index n = n_;
-    const auto F = F_.leftCols(U);
-    const auto L = L_.leftCols(U);
+    const auto F = modal_cols(F_, U);
+    const auto L = modal_cols(L_, U);
     const auto A = A_.head(U);
     auto u = u_.head(U);
+    auto qdd = modal(eval_.qdd);
     if (!reuse) {
-      W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
+      auto W = modal_cols(W_, U);
+      W.noalias() = F * A.cwiseInverse().asDiagonal();
       Eigen::Matrix<Scalar, K, K> M = Eigen::Matrix<Scalar, K, K>::Identity();
-      M.topLeftCorner(n, n).noalias() += W_.leftCols(U).lazyProduct(L.transpose());
+      M.template block<Modes, Modes>(0, 0, n, n).noalias() += W.lazyProduct(L.transpose());
       lu.compute(M);
     }
     u = c_.head(U).cwiseQuotient(A);
     Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
-    r.head(n) = r0_;
-    r.head(n).noalias() += F.lazyProduct(u);
+    auto rn = r.template segment<Modes>(0, n);
+    rn = modal(r0_);
+    rn.noalias() += F.lazyProduct(u);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
-    eval_.qdd = z.head(n);
+    qdd = z.template segment<Modes>(0, n);
     u = c_.head(U);
-    u.noalias() -= L.transpose().lazyProduct(eval_.qdd);
+    u.noalias() -= L.transpose().lazyProduct(qdd);
     u = u.cwiseQuotient(A);
   }
 
@@ -911,6 +929,21 @@ class FrictionDampedSystem {
   /// let Eigen unroll what a dynamic LU of the same order spends in loop and call overhead);
   /// beyond, m itself (an exact-size dynamic LU).
   static Index padded_order(Index m) noexcept { return m <= 8 ? m + (m & 1) : m; }
+  /// True when n modes fit a K x K mode-space system (always for dynamic Modes).
+  template <int K>
+  static constexpr bool fits_order() noexcept { return Modes == Eigen::Dynamic || Modes <= K; }
+
+  // Views with the compile-time number of modes as their number of rows.
+  template <class V>
+  auto modal(V&& v) const { return v.template segment<Modes>(0, n_); }
+  template <class M>
+  auto modal_cols(M& m, Index cols) const { return m.template block<Modes, Eigen::Dynamic>(0, 0, n_, cols); }
+  /// Element e's n x 6 nodal block of damper iu's member (MemberShapes::element_block).
+  auto element_block(std::size_t iu, Index e) const {
+    const auto B = shapes_[static_cast<std::size_t>(damper_shape_[iu])].element_block(e);
+    return Eigen::Map<const Eigen::Matrix<Scalar, Modes, 6>, 0, Eigen::OuterStride<>>(
+        B.data(), n_, 6, Eigen::OuterStride<>(B.outerStride()));
+  }
 
   /// The exact-size LU for U > 8 unknowns (allocated on first use only).
   Eigen::PartialPivLU<Matrix>& sized_lu(Index U) const {
@@ -931,6 +964,11 @@ class FrictionDampedSystem {
       set_stuck_velocities(mode, x);
       cache_valid_ = false;
       const Evaluation& e = evaluate(mode, t, x);
+      if (!e.finite) {  // a blown-up state: no states to choose; the stepper's finiteness check
+        mode = before;  // after the transition reports it (Status::NonFiniteState)
+        consistent = true;
+        break;
+      }
       consistent = true;
       for (Index i = 0; i < D_; ++i) {
         if (!has_stick_[static_cast<std::size_t>(i)] || mode[i] != ContactState::Stick) continue;
