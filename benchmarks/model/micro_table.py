@@ -38,6 +38,17 @@ def main(path):
                 continue
             b, s, k = ns(bare), ns(slip), ns(stick)
             print(f"| {n} | {d} | {b:.0f} | {s:.0f} | {s / b:.2f} | {k:.0f} | {k / b:.2f} |")
+    fixed = [(d, rows.get(f"BM_RhsBareFixed6/{d}"), rows.get(f"BM_RhsComposedFixed6/{d}/0"),
+              rows.get(f"BM_RhsComposedFixed6/{d}/1")) for d in (2, 8, 32)]
+    if any(all(r) for _, *r in fixed):
+        print("\nWith the number of modes fixed at compile time (Modes = 6) in both:\n")
+        print("| n modes | D dampers | bare RHS [ns] | composed, slipping [ns] | ratio | composed, stuck [ns] | ratio |")
+        print("|---|---|---|---|---|---|---|")
+        for d, bare, slip, stick in fixed:
+            if not (bare and slip and stick):
+                continue
+            b, s, k = ns(bare), ns(slip), ns(stick)
+            print(f"| 6 (fixed) | {d} | {b:.0f} | {s:.0f} | {s / b:.2f} | {k:.0f} | {k / b:.2f} |")
     print("\n| benchmark | CPU time | counters |\n|---|---|---|")
     for name, b in rows.items():
         if name.startswith("BM_Rhs"):

@@ -53,6 +53,17 @@ bool law_has_stick_state(const Law& law) {
   });
 }
 
+/// Order-2 systems of the acceleration solve: the closed-form inverse (Eigen's cofactor formula)
+/// in place of an LU; for order 2 Cramer's rule is forward stable (Higham, Accuracy and Stability
+/// of Numerical Algorithms, 2nd ed., sec. 1.10.1). A singular matrix gives non-finite values,
+/// reported as a non-finite evaluation, as with an LU.
+template <class Scalar>
+struct Inverse2 {
+  Eigen::Matrix<Scalar, 2, 2> inverse = Eigen::Matrix<Scalar, 2, 2>::Identity();
+  void compute(const Eigen::Matrix<Scalar, 2, 2>& m) { inverse = m.inverse(); }
+  Eigen::Matrix<Scalar, 2, 1> solve(const Eigen::Matrix<Scalar, 2, 1>& r) const { return inverse * r; }
+};
+
 inline bool is_slipping(ContactState s) noexcept {
   return s == ContactState::SlipPositive || s == ContactState::SlipNegative;
 }
@@ -308,19 +319,19 @@ class FrictionDampedSystem {
   void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt) {
     const Evaluation& e = evaluate(mode, t, x);
     dxdt.resize(x.size());
-    dxdt.head(n_) = x.segment(n_, n_);
-    dxdt.segment(n_, n_) = e.qdd;
+    dxdt.template segment<Modes>(0, n_) = x.template segment<Modes>(n_, n_);
+    dxdt.template segment<Modes>(n_, n_) = modal(e.qdd);
     dxdt.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
     dxdt.segment(xd_offset(), D_) = e.xdd;
     if (options_.moving_contact) dxdt.segment(contact_offset(), D_) = e.V;
     if (options_.energy_audit) {
-      const auto qd = x.segment(n_, n_);
+      const auto qd = x.template segment<Modes>(n_, n_);
       Scalar p_ext = 0;
       for (Index l = 0; l < load_psi_.cols(); ++l)
         p_ext += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l).dot(qd);
       const Index o = energy_offset();
       dxdt[o] = p_ext;
-      dxdt[o + 1] = qd.dot(two_zeta_omega_.cwiseProduct(qd));
+      dxdt[o + 1] = qd.dot(modal(two_zeta_omega_).cwiseProduct(qd));
       dxdt[o + 2] = -e.f.dot(e.V);
       dxdt[o + 3] = options_.moving_contact ? -(e.N.array() * e.slope.array() * e.V.array()).sum() : Scalar(0);
     }
@@ -599,11 +610,11 @@ class FrictionDampedSystem {
   /// (A + L^T F) u = c - L^T r0, or the mode-space system (I + F A^-1 L^T) q'' = r0 + F A^-1 c.
   void solve(const Mode& mode, Scalar t, const State& x) const {
     const Index n = n_, D = D_;
-    const auto q = x.head(n);
-    const auto qd = x.segment(n, n);
+    const auto q = x.template segment<Modes>(0, n);
+    const auto qd = x.template segment<Modes>(n, n);
     Evaluation& e = eval_;
 
-    r0_.noalias() = -omega2_.cwiseProduct(q) - two_zeta_omega_.cwiseProduct(qd);
+    modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(two_zeta_omega_).cwiseProduct(qd);
     for (Index l = 0; l < load_psi_.cols(); ++l)
       r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
 
@@ -874,8 +885,8 @@ class FrictionDampedSystem {
   /// The capacitance form for U <= K unknowns in a fixed K x K system padded with identity rows:
   /// (A + L^T F) u = c - L^T r0, then q'' = r0 + F u. Coefficient-based products: for a K x K
   /// result GEMM/GEMV packing costs more than it saves.
-  template <int K>
-  void solve_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
+  template <int K, class Factor>
+  void solve_small(Index U, bool reuse, Factor& lu) const {
     const auto F = modal_cols(F_, U);
     const auto L = modal_cols(L_, U);
     const auto r0 = modal(r0_);
@@ -897,8 +908,8 @@ class FrictionDampedSystem {
 
   /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows:
   /// (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
-  template <int K>
-  void solve_mode_space_small(Index U, bool reuse, Eigen::PartialPivLU<Eigen::Matrix<Scalar, K, K>>& lu) const {
+  template <int K, class Factor>
+  void solve_mode_space_small(Index U, bool reuse, Factor& lu) const {
     const Index n = n_;
     const auto F = modal_cols(F_, U);
     const auto L = modal_cols(L_, U);
@@ -1063,7 +1074,7 @@ class FrictionDampedSystem {
   mutable Vector shapes_X_;  // contact coordinate at which each damper's shapes were evaluated
   mutable Index factor_unknowns_ = -1;
   mutable bool factor_mode_space_ = false;
-  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 2, 2>> lu2_;
+  mutable detail::Inverse2<Scalar> lu2_;  // order 2: closed-form inverse
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 6, 6>> lu6_;
   mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 8, 8>> lu8_;
