@@ -797,7 +797,11 @@ class FrictionDampedSystem {
     unknown_of_[static_cast<std::size_t>(U)] = column;
     A_[U] = diag;
     c_[U] = rhs;
-    key_.segment(4 * U, 4) << Scalar(column), eval_.X[i], mu, sc;
+    Scalar* key = key_.data() + 4 * U;
+    key[0] = Scalar(column);
+    key[1] = eval_.X[i];
+    key[2] = mu;
+    key[3] = sc;
     return num_unknowns_++;
   }
 
