@@ -145,7 +145,7 @@ class FrictionDampedSystem {
   struct SolveInfo {
     Index unknowns = 0;       ///< U, the forces solved for (0: every force known)
     bool mode_space = false;  ///< the n x n mode-space form, else the U x U capacitance form
-    Index system_size = 0;    ///< order of the factorised matrix (2, 4, 8 when padded; else n or U)
+    Index system_size = 0;    ///< order of the factorised matrix (2, 4, 6, 8 when padded; else n or U)
     bool reused = false;      ///< the factorisation was kept from an earlier call
   };
 
@@ -541,8 +541,6 @@ class FrictionDampedSystem {
     for (auto& v : values_) v.resize(n_);
     C_.setZero(n_, D2);
     dpsi_w_.setZero(n_, D_);
-    ddpsi_w_.setZero(n_, D_);
-    dpsi_u_.setZero(n_, D_);
     S_.setZero(D2, D2);
     key_.setZero(4 * D2);
     shapes_X_.setConstant(D_, std::numeric_limits<Scalar>::quiet_NaN());  // nothing evaluated yet
@@ -572,7 +570,7 @@ class FrictionDampedSystem {
     involved_.reserve(static_cast<std::size_t>(D_));
   }
 
-  /// Shapes of damper i at contact coordinate X into C_ and the derivative columns. Kept while X
+  /// Shapes of damper i at contact coordinate X into C_ and its slope column. Kept while X
   /// is unchanged (bitwise): a stuck damper's X is exactly constant over every stage of a stick
   /// phase, so its shapes are evaluated once per phase.
   void evaluate_shapes(Index i, Scalar X) const {
@@ -585,10 +583,6 @@ class FrictionDampedSystem {
     C_.col(i) = side * v.psi_w;
     C_.col(D_ + i) = v.psi_u;
     dpsi_w_.col(i) = side * v.dpsi_w;
-    if (options_.convective_terms) {  // only the convective terms need psi_w'' and psi_u'
-      ddpsi_w_.col(i) = side * v.ddpsi_w;
-      dpsi_u_.col(i) = v.dpsi_u;
-    }
   }
 
   /// Signed slip coefficient mu_i with f_i = -mu_i N_i for a slipping (or regularised) damper.
@@ -619,7 +613,6 @@ class FrictionDampedSystem {
       r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
 
     const bool moving = options_.moving_contact;
-    const bool convective = options_.convective_terms;
     num_unknowns_ = 0;
     for (Index i = 0; i < D; ++i) {
       const std::size_t iu = static_cast<std::size_t>(i);
@@ -649,15 +642,12 @@ class FrictionDampedSystem {
       const Scalar xi = x[x_offset() + i];
       const Scalar V = stuck ? Scalar(0) : x[xd_offset() + i] - qd.dot(b);
       e.V[i] = V;
-      Scalar slope = 0, h = 0, dd = 0;
-      if (moving) slope = q.dot(dpsi_w_.col(i));
-      if (convective && !stuck) {
-        h = Scalar(2) * qd.dot(dpsi_w_.col(i)) * V + q.dot(ddpsi_w_.col(i)) * V * V;
-        dd = qd.dot(dpsi_u_.col(i)) * V;
-      }
-      e.slope[i] = slope;
+      // Only stuck dampers and slipping dampers at a fixed contact come here (moving ones went to
+      // moving_damper): no convective terms (V = 0, or convective_terms off without a moving
+      // contact), and the slope enters only the outputs and the audit.
+      e.slope[i] = moving ? q.dot(dpsi_w_.col(i)) : Scalar(0);
       e.y[i] = q.dot(a);
-      d_[i] = dd;
+      d_[i] = 0;
       const bool inertial = inertial_[iu];
       if (stuck) {  // stick rows (eq 11 with x'' = b^T q''): N_i + m a^T q'' = N0, f_i - m b^T q'' = k x
         if (inertial) {
@@ -675,10 +665,9 @@ class FrictionDampedSystem {
         const Scalar mu = slip_coefficient(i, s, V);
         mu_[i] = mu;
         if (inertial) {
-          const Scalar sc = convective ? slope : Scalar(0);
-          const Index j = add_unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
+          const Index j = add_unknown(i, Scalar(1), dmp.preload, mu, Scalar(0));
           F_.col(j) = a + mu * b;
-          L_.col(j) = m * a - (m * sc) * b;
+          L_.col(j) = m * a;
         } else {
           e.N[i] = dmp.preload;
           e.f[i] = -mu * dmp.preload;
@@ -751,23 +740,21 @@ class FrictionDampedSystem {
       Pq.noalias() += q[j] * Bt.col(j);
       Pqd.noalias() += qd[j] * Bt.col(j);
     }
-    Eigen::Matrix<Scalar, 6, 2> P;
-    P << Pq, Pqd;
-    const Scalar wp1 = P(1, 0), wp2 = P(2, 0), wp4 = P(4, 0), wp5 = P(5, 0);  // w-part of B^T q
+    const Scalar wp1 = Pq[1], wp2 = Pq[2], wp4 = Pq[4], wp5 = Pq[5];  // w-part of B^T q
     const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
     const Scalar xi = x[x_offset() + i];
-    const Scalar V = x[xd_offset() + i] - (w.u1 * P(0, 1) + w.u2 * P(3, 1));  // x' - b^T q'
+    const Scalar V = x[xd_offset() + i] - (w.u1 * Pqd[0] + w.u2 * Pqd[3]);  // x' - b^T q'
     e.V[i] = V;
     const Scalar slope = sd * (w.dw1 * wp1 + w.dt1 * wp2 + w.dw2 * wp4 + w.dt2 * wp5);
     Scalar h = 0, dd = 0;
     if (options_.convective_terms) {
-      const Scalar dw_qd = sd * (w.dw1 * P(1, 1) + w.dt1 * P(2, 1) + w.dw2 * P(4, 1) + w.dt2 * P(5, 1));
+      const Scalar dw_qd = sd * (w.dw1 * Pqd[1] + w.dt1 * Pqd[2] + w.dw2 * Pqd[4] + w.dt2 * Pqd[5]);
       const Scalar ddw_q = sd * (w.ddw1 * wp1 + w.ddt1 * wp2 + w.ddw2 * wp4 + w.ddt2 * wp5);
       h = Scalar(2) * dw_qd * V + ddw_q * V * V;
-      dd = w.du * (P(3, 1) - P(0, 1)) * V;
+      dd = w.du * (Pqd[3] - Pqd[0]) * V;
     }
     e.slope[i] = slope;
-    e.y[i] = ca.dot(P.col(0));
+    e.y[i] = ca.dot(Pq);
     d_[i] = dd;
     const Scalar mu = slip_coefficient(i, mode[i], V);
     mu_[i] = mu;
@@ -1061,7 +1048,8 @@ class FrictionDampedSystem {
   // Workspace of the solve (allocated once; the solve allocates nothing).
   mutable std::vector<typename Shapes::Values> values_;
   mutable std::vector<ElementCursor> cursors_;
-  mutable Matrix C_, dpsi_w_, ddpsi_w_, dpsi_u_;  // shapes at the contacts (C = [a_1..a_D b_1..b_D])
+  // Shapes at the contacts of stuck dampers and fixed contacts (C = [a_1..a_D b_1..b_D], slopes).
+  mutable Matrix C_, dpsi_w_;
   mutable Vector r0_, d_, mu_;
   // Reduced unknowns of the solve: force directions F, row directions L, diagonal A, right side c.
   mutable Matrix F_, L_, W_, S_, Mn_;
