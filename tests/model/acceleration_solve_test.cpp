@@ -231,6 +231,53 @@ TEST(AccelerationSolve, EightDampersConstantNormalLoadMatchesDenseReference) {
   check_many_dampers_against_dense(24, 8, false, {{false, 8}});
 }
 
+// A slipping damper's normal-force row has the diagonal A_jj = 1 - s_j mu_j (slope s_j, signed
+// slip coefficient mu_j). The solve divides a row with |A_jj| >= 1/2 by A_jj and uses the
+// mode-space form only when every row was so normalised; a row with |A_jj| < 1/2 (down to 0 and
+// below) sends it to the capacitance form. Here q is scaled so that damper 0's slope gives a chosen
+// A_00 (absurdly steep slopes, 1 to 10 rad: a test of the algebra, not of a physical state); every
+// call must match the dense reference, and the form must follow the rule, with A_jj computed here
+// from component 3's slope, independently of the system.
+TEST(AccelerationSolve, SteepSlopesSwitchToCapacitanceFormAndMatchDenseReference) {
+  const TScene s = make_t_frame(6, 20, 8);
+  std::vector<PointDamper<double>> dampers;
+  const double m = 12.0 / (0.5 * 0.46 * 50.0 * 50.0);
+  for (int i = 0; i < 8; ++i) dampers.emplace_back(s.platform, 0.004 * (i + 1), m, 1e4, 12.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+  System sys(s.frame, s.basis, dampers, paper_load(s), ModelOptions<double>{});
+  const Index n = sys.num_modes(), D = sys.num_dampers();
+  std::mt19937 rng(20261123u);
+  bool reached[2] = {false, false};
+  for (double A0 : {0.9, 0.7, 0.51, -0.51, -3.0, 0.49, 0.2, 0.0, -0.3}) {
+    for (ContactState s0 : {ContactState::SlipPositive, ContactState::SlipNegative}) {
+      DamperStates mode(D);
+      for (Index i = 0; i < D; ++i) mode[i] = i % 2 == 0 ? ContactState::SlipPositive : ContactState::SlipNegative;
+      mode[0] = s0;
+      System::State x = random_state(sys, rng);
+      auto slope = [&](Index i) {
+        return x.head(n).dot(shapes_at(s, x[sys.contact_offset() + i]).da);  // side = +1
+      };
+      auto mu = [&](Index i) { return mode[i] == ContactState::SlipPositive ? 0.3 : -0.3; };
+      x.head(n) *= (1.0 - A0) / mu(0) / slope(0);  // slope_0 = (1 - A0) / mu_0
+      bool all_normalised = true;
+      for (Index i = 0; i < D; ++i) all_normalised = all_normalised && std::abs(1.0 - slope(i) * mu(i)) >= 0.5;
+      const auto& e = sys.evaluate(mode, 0.01, x);
+      EXPECT_NEAR(1.0 - slope(0) * mu(0), A0, 1e-12);
+      EXPECT_EQ(sys.last_solve().mode_space, all_normalised) << "A_00 = " << A0;
+      reached[sys.last_solve().mode_space ? 1 : 0] = true;
+      const VectorXd ref = dense_reference(s, sys, mode, 0.01, x, true, true, true);
+      // As above: direct solves of one linear system; its condition number grows as A_00 -> 0
+      // (1e3-1e4 here), hence 1e-9 instead of 1e-10.
+      const double qscale = ref.head(n).cwiseAbs().maxCoeff();
+      EXPECT_LT((e.qdd - ref.head(n)).cwiseAbs().maxCoeff(), 1e-9 * qscale) << "A_00 = " << A0;
+      const double Nscale = ref.segment(n, D).cwiseAbs().maxCoeff();
+      EXPECT_LT((e.N - ref.segment(n, D)).cwiseAbs().maxCoeff(), 1e-9 * Nscale) << "A_00 = " << A0;
+      EXPECT_LT((e.f - ref.segment(n + D, D)).cwiseAbs().maxCoeff(), 1e-9 * Nscale) << "A_00 = " << A0;
+    }
+  }
+  EXPECT_TRUE(reached[0]) << "capacitance form not reached";
+  EXPECT_TRUE(reached[1]) << "mode-space form not reached";
+}
+
 TEST(AccelerationSolve, MatchesDenseReferenceFullModel) { check_against_dense(true, true, true); }
 TEST(AccelerationSolve, MatchesDenseReferenceWithoutConvectiveTerms) { check_against_dense(true, true, false); }
 TEST(AccelerationSolve, MatchesDenseReferenceFixedContact) { check_against_dense(true, false, false); }

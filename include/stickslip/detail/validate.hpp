@@ -3,6 +3,8 @@
 /// \brief Argument checks shared by all components. Caller errors throw std::invalid_argument
 /// with a message that names the function/type, the parameter and the offending value.
 
+#include <Eigen/Core>
+
 #include <cassert>
 #include <cmath>
 #include <sstream>
@@ -28,6 +30,15 @@ std::string format_value(const T& value) {
 template <class T>
 [[noreturn]] void throw_invalid(const std::string& where, const std::string& what, const T& value) {
   throw std::invalid_argument(where + ": " + what + " (got " + format_value(value) + ")");
+}
+
+/// True when every coefficient of v is finite: the sum of v * 0 is 0 for finite values and NaN as
+/// soon as one is infinite or NaN (one vectorised reduction, where Eigen's allFinite() is a
+/// coefficient-wise comparison loop). Not valid under -ffast-math, as allFinite() is not.
+template <class Derived>
+bool all_finite(const Eigen::DenseBase<Derived>& v) {
+  using std::isfinite;
+  return isfinite((v.derived().array() * typename Derived::Scalar(0)).sum());
 }
 
 /// Require a finite value.

@@ -553,7 +553,6 @@ class FrictionDampedSystem {
     mu_.setZero(D_);
     F_.setZero(n_, D2);
     L_.setZero(n_, D2);
-    W_.setZero(n_, D2);
     A_.setZero(D2);
     c_.setZero(D2);
     u_.setZero(D2);
@@ -601,7 +600,8 @@ class FrictionDampedSystem {
   /// Known forces (constant N, f = -mu N of a slipping damper) are eliminated first; the U <= 2D
   /// remaining unknowns u satisfy  A u + L^T q'' = c  with  q'' = r0 + F u  (A diagonal, F and L
   /// n x U). Solved in the smaller of two equivalent forms: the capacitance (Woodbury) system
-  /// (A + L^T F) u = c - L^T r0, or the mode-space system (I + F A^-1 L^T) q'' = r0 + F A^-1 c.
+  /// (A + L^T F) u = c - L^T r0, or the mode-space system (I + F A^-1 L^T) q'' = r0 + F A^-1 c,
+  /// used with A = I (rows with |A_jj| >= 1/2 are divided by A_jj as they are assembled).
   void solve(const Mode& mode, Scalar t, const State& x) const {
     const Index n = n_, D = D_;
     const auto q = x.template segment<Modes>(0, n);
@@ -705,7 +705,7 @@ class FrictionDampedSystem {
         e.Vdot[i] = e.xdd[i] - bq - d_[i];
       }
     }
-    e.finite = e.qdd.allFinite() && e.N.allFinite() && e.f.allFinite();
+    e.finite = detail::all_finite(e.qdd) && detail::all_finite(e.N) && detail::all_finite(e.f);
   }
 
   /// One slipping damper with a moving contact (its X changes at every call): its slip row
@@ -761,8 +761,16 @@ class FrictionDampedSystem {
     const Vec6 cf = ca + mu * cb;
     if (inertial_[iu]) {
       const Scalar sc = options_.convective_terms ? slope : Scalar(0);
-      const Index j = add_unknown(i, Scalar(1) - sc * mu, dmp.preload - m * h + sc * k * xi + m * sc * dd, mu, sc);
-      const Vec6 cl = m * ca - (m * sc) * cb;
+      Scalar diag = Scalar(1) - sc * mu, rhs = dmp.preload - m * h + sc * k * xi + m * sc * dd;
+      Vec6 cl = m * ca - (m * sc) * cb;
+      using std::abs;
+      if (diag != Scalar(1) && abs(diag) >= Scalar(0.5)) {  // the row over its diagonal (solve_unknowns)
+        const Scalar inv = Scalar(1) / diag;
+        cl *= inv;
+        rhs *= inv;
+        diag = Scalar(1);
+      }
+      const Index j = add_unknown(i, diag, rhs, mu, sc);
       block_times<false>(modal(F_.col(j)), B, cf);
       block_times<false>(modal(L_.col(j)), B, cl);
     } else {
@@ -805,9 +813,10 @@ class FrictionDampedSystem {
   /// of order up to 8 (U unknowns, or n modes in the mode-space form) uses a fixed-size 2, 4, 6
   /// or 8 LU padded with identity rows (padded_order); a larger capacitance system an exact-size
   /// LU allocated by the first solve with that many unknowns (in a run: the transition into the
-  /// mode, which evaluates it; never inside a step). The mode-space form
-  /// needs A well away from singular (|A_jj| >= 1/2, i.e. |s_i mu_i| <= 1/2), else the
-  /// capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
+  /// mode, which evaluates it; never inside a step). Every row is assembled with A_jj = 1 except
+  /// a slip row whose diagonal 1 - s_i mu_i is below 1/2 in magnitude (a row with |A_jj| >= 1/2 is
+  /// divided by it in moving_damper, which costs six divisions instead of a pass over F). The
+  /// mode-space form needs A = I - no such row - else the capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
   /// slope) is unchanged - while the unknowns belong to stuck dampers (X constant) or to a fixed
   /// contact with a constant slip coefficient - so that such calls cost O(n U + U^2).
   void solve_unknowns(Index U) const {
@@ -827,7 +836,7 @@ class FrictionDampedSystem {
       const auto lu_cost = [](Index order) { const double o = static_cast<double>(order); return o * o * o / 3.0; };
       const double capacitance_cost = nd * ud * ud + lu_cost(padded_order(U));
       const double mode_space_cost = nd * nd * ud + lu_cost(padded_order(n));
-      factor_mode_space_ = mode_space_cost < capacitance_cost && (A.array().abs() >= Scalar(0.5)).all();
+      factor_mode_space_ = mode_space_cost < capacitance_cost && (A.array() == Scalar(1)).all();
       factor_unknowns_ = -1;  // valid again once the factorisation below is complete
     }
     const Index order = padded_order(factor_mode_space_ ? n : U);
@@ -838,19 +847,18 @@ class FrictionDampedSystem {
       if constexpr (fits_order<6>()) if (order == 6) solve_mode_space_small<6>(U, reuse, lu6_);
       if constexpr (fits_order<8>()) if (order == 8) solve_mode_space_small<8>(U, reuse, lu8_);
     } else if (factor_mode_space_) {
-      // (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
+      // (I + F L^T) q'' = r0 + F c, then u = c - L^T q'' (A = I).
       if (!reuse) {
-        W_.leftCols(U).noalias() = F * A.cwiseInverse().asDiagonal();
-        Mn_.setIdentity();
-        Mn_.noalias() += W_.leftCols(U) * L.transpose();
+        // (assigned, then 1 added to the diagonal: a setIdentity() first and an accumulating
+        // product cost a third more, measured at n = 24, U = 32)
+        Mn_.noalias() = F * L.transpose();
+        Mn_.diagonal().array() += Scalar(1);
         lun_.compute(Mn_);
       }
-      u = c.cwiseQuotient(A);
-      r0_.noalias() += F * u;
+      r0_.noalias() += F * c;
       e.qdd.noalias() = lun_.solve(r0_);
       u = c;
       u.noalias() -= L.transpose() * e.qdd;
-      u = u.cwiseQuotient(A);
     } else if (order == 2) {
       solve_small<2>(U, reuse, lu2_);
     } else if (order == 4) {
@@ -887,52 +895,58 @@ class FrictionDampedSystem {
   /// result GEMM/GEMV packing costs more than it saves.
   template <int K, class Factor>
   void solve_small(Index U, bool reuse, Factor& lu) const {
-    const auto F = modal_cols(F_, U);
-    const auto L = modal_cols(L_, U);
+    if (U == K)  // no padding: products with K columns known at compile time
+      solve_small_products<K>(K, reuse, lu);
+    else
+      solve_small_products<Eigen::Dynamic, K>(U, reuse, lu);
+  }
+  /// solve_small with Cols (or, for Eigen::Dynamic, U) columns of F and L in a K x K system.
+  template <int Cols, int K = Cols, class Factor>
+  void solve_small_products(Index U, bool reuse, Factor& lu) const {
+    const auto F = F_.template block<Modes, Cols>(0, 0, n_, U);
+    const auto L = L_.template block<Modes, Cols>(0, 0, n_, U);
     const auto r0 = modal(r0_);
     if (!reuse) {
       Eigen::Matrix<Scalar, K, K> S = Eigen::Matrix<Scalar, K, K>::Identity();
-      S.topLeftCorner(U, U).noalias() = L.transpose().lazyProduct(F);
-      S.diagonal().head(U) += A_.head(U);
+      S.template topLeftCorner<Cols, Cols>(U, U).noalias() = L.transpose().lazyProduct(F);
+      S.diagonal().template head<Cols>(U) += A_.template head<Cols>(U);
       lu.compute(S);
     }
     Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
-    r.head(U) = c_.head(U);
-    r.head(U).noalias() -= L.transpose().lazyProduct(r0);
+    auto rU = r.template head<Cols>(U);
+    rU = c_.template head<Cols>(U);
+    rU.noalias() -= L.transpose().lazyProduct(r0);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
-    u_.head(U) = z.head(U);
+    auto u = u_.template head<Cols>(U);
+    u = z.template head<Cols>(U);
     auto qdd = modal(eval_.qdd);
     qdd = r0;
-    qdd.noalias() += F.lazyProduct(u_.head(U));
+    qdd.noalias() += F.lazyProduct(u);
   }
 
-  /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows:
-  /// (I + F A^-1 L^T) q'' = r0 + F A^-1 c, then u = A^-1 (c - L^T q'').
+  /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows
+  /// (A = I, see solve_unknowns): (I + F L^T) q'' = r0 + F c, then u = c - L^T q''.
   template <int K, class Factor>
   void solve_mode_space_small(Index U, bool reuse, Factor& lu) const {
     const Index n = n_;
     const auto F = modal_cols(F_, U);
     const auto L = modal_cols(L_, U);
-    const auto A = A_.head(U);
-    auto u = u_.head(U);
+    const auto c = c_.head(U);
     auto qdd = modal(eval_.qdd);
     if (!reuse) {
-      auto W = modal_cols(W_, U);
-      W.noalias() = F * A.cwiseInverse().asDiagonal();
       Eigen::Matrix<Scalar, K, K> M = Eigen::Matrix<Scalar, K, K>::Identity();
-      M.template block<Modes, Modes>(0, 0, n, n).noalias() += W.lazyProduct(L.transpose());
+      M.template block<Modes, Modes>(0, 0, n, n).noalias() += F.lazyProduct(L.transpose());
       lu.compute(M);
     }
-    u = c_.head(U).cwiseQuotient(A);
     Eigen::Matrix<Scalar, K, 1> r = Eigen::Matrix<Scalar, K, 1>::Zero();
     auto rn = r.template segment<Modes>(0, n);
     rn = modal(r0_);
-    rn.noalias() += F.lazyProduct(u);
+    rn.noalias() += F.lazyProduct(c);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
     qdd = z.template segment<Modes>(0, n);
-    u = c_.head(U);
+    auto u = u_.head(U);
+    u = c;
     u.noalias() -= L.transpose().lazyProduct(qdd);
-    u = u.cwiseQuotient(A);
   }
 
   /// Order of the matrix factorised for m unknowns (capacitance form) or m modes (mode space):
@@ -1061,7 +1075,7 @@ class FrictionDampedSystem {
   mutable Matrix C_, dpsi_w_;
   mutable Vector r0_, d_, mu_;
   // Reduced unknowns of the solve: force directions F, row directions L, diagonal A, right side c.
-  mutable Matrix F_, L_, W_, S_, Mn_;
+  mutable Matrix F_, L_, S_, Mn_;
   mutable Vector A_, c_, u_, rhs_;
   mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
   mutable Index num_unknowns_ = 0;
