@@ -437,3 +437,78 @@ void check_factorisation_reuse(int modes, int num_dampers) {
 TEST(AccelerationSolve, FactorisationReuseFixedFourByFour) { check_factorisation_reuse(6, 2); }
 TEST(AccelerationSolve, FactorisationReuseModeSpaceForm) { check_factorisation_reuse(6, 8); }
 TEST(AccelerationSolve, FactorisationReuseCapacitanceForm) { check_factorisation_reuse(24, 8); }
+
+namespace {
+// Iterative refinement from a stale factorisation (ModelOptions::refine_stale_factorisation):
+// a slipping pattern is solved at a state, then at states whose contacts moved by a stage's step
+// (X + 1e-7 m, q and q' changed by 1e-3 relative, as between integrator stages). Each refined
+// solve must (a) be a refinement (SolveInfo::refinements > 0, not a reuse), (b) match the dense
+// reference (1e-10, as above), and (c) match a direct solve of the same state by a system with the
+// option off to 1e-12 relative: refinement stops when a correction is below 16 eps relative, and
+// the direct LU solve's own error is about cond * eps with cond ~ 1e1-1e2 for these matrices, so
+// the two agree to ~1e-14; 1e-12 leaves two orders for the condition number. A large change -
+// every slip direction reversed at the same state, a matrix far from the stored one - must
+// abandon refinement and refactorise (refinements == 0), still matching the reference. With the
+// option off the result is a function of the state alone: bitwise equal to a fresh system's.
+void check_refinement(int modes, int num_dampers, bool all_slip, bool expect_mode_space) {
+  const TScene s = make_t_frame(modes, 20, 8);
+  std::vector<PointDamper<double>> dampers;
+  const double m = 12.0 / (0.5 * 0.46 * 50.0 * 50.0);
+  for (int i = 0; i < num_dampers; ++i) {
+    dampers.emplace_back(s.platform, 0.032 * (i + 1) / (num_dampers + 1), m, 1e4, 12.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+    if (i % 2 == 1) dampers.back().side = -1.0;
+  }
+  ModelOptions<double> on, off;
+  off.refine_stale_factorisation = false;
+  System sys(s.frame, s.basis, dampers, paper_load(s), on);
+  System direct(s.frame, s.basis, dampers, paper_load(s), off);
+  const Index n = sys.num_modes(), D = sys.num_dampers(), xo = sys.contact_offset();
+  std::mt19937 rng(20261125u);
+  DamperStates mode(D), reversed(D);
+  for (Index i = 0; i < D; ++i) {
+    const bool slip = all_slip || i % 2 == 0;
+    mode[i] = slip ? (i % 4 == 0 ? ContactState::SlipPositive : ContactState::SlipNegative) : ContactState::Stick;
+    reversed[i] = mode[i] == ContactState::SlipPositive ? ContactState::SlipNegative
+                  : mode[i] == ContactState::SlipNegative ? ContactState::SlipPositive : ContactState::Stick;
+  }
+  System::State x = random_state(sys, rng);
+  double t = 0.002;
+  auto check = [&](const DamperStates& md, const System::State& xs, const char* what, bool refined) {
+    t += 1e-5;
+    const auto& e = sys.evaluate(md, t, xs);
+    const System::SolveInfo info = sys.last_solve();
+    EXPECT_EQ(info.mode_space, expect_mode_space) << what;
+    EXPECT_FALSE(info.reused) << what;
+    EXPECT_EQ(info.refinements > 0, refined) << what << " (" << info.refinements << " corrections)";
+    const VectorXd ref = dense_reference(s, sys, md, t, xs, true, true, true);
+    const double qscale = ref.head(n).cwiseAbs().maxCoeff();
+    EXPECT_LT((e.qdd - ref.head(n)).cwiseAbs().maxCoeff(), 1e-10 * qscale) << what;
+    EXPECT_LT((e.N - ref.segment(n, D)).cwiseAbs().maxCoeff(), 1e-10 * 12.0) << what;
+    const auto& d = direct.evaluate(md, t, xs);
+    EXPECT_EQ(direct.last_solve().refinements, 0) << what;
+    EXPECT_LT((e.qdd - d.qdd).cwiseAbs().maxCoeff(), 1e-12 * d.qdd.cwiseAbs().maxCoeff()) << what;
+    EXPECT_LT((e.N - d.N).cwiseAbs().maxCoeff(), 1e-12 * d.N.cwiseAbs().maxCoeff()) << what;
+    EXPECT_LT((e.f - d.f).cwiseAbs().maxCoeff(), 1e-12 * d.N.cwiseAbs().maxCoeff()) << what;
+    return info.refinements;
+  };
+  check(mode, x, "first solve: direct", false);
+  int corrections = 0;
+  for (int stage = 0; stage < 6; ++stage) {
+    x.head(2 * n) *= 1.0 + 1e-3;
+    x.segment(xo, D).array() += 1e-7;
+    corrections = std::max(corrections, check(mode, x, "stage: refined", true));
+  }
+  std::printf("at most %d corrections per refined solve\n", corrections);
+  check(reversed, x, "slip directions reversed: refactorised", false);
+
+  // Option off: bitwise a function of the state (a fresh system gives the same bits).
+  System fresh(s.frame, s.basis, dampers, paper_load(s), off);
+  const auto& a = direct.evaluate(mode, t, x);
+  const VectorXd qa = a.qdd;
+  const auto& b = fresh.evaluate(mode, t, x);
+  EXPECT_EQ(qa, b.qdd);
+}
+}  // namespace
+
+TEST(AccelerationSolve, RefinementFromStaleFactorisationModeSpaceForm) { check_refinement(12, 16, true, true); }
+TEST(AccelerationSolve, RefinementFromStaleFactorisationCapacitanceForm) { check_refinement(24, 8, false, false); }

@@ -147,6 +147,9 @@ class FrictionDampedSystem {
     bool mode_space = false;  ///< the n x n mode-space form, else the U x U capacitance form
     Index system_size = 0;    ///< order of the factorised matrix (2, 4, 6, 8 when padded; else n or U)
     bool reused = false;      ///< the factorisation was kept from an earlier call
+    /// Corrections of iterative refinement from an earlier factorisation of a slightly different
+    /// matrix (0: none; the solve was direct, ModelOptions::refine_stale_factorisation).
+    int refinements = 0;
   };
 
   /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
@@ -549,6 +552,8 @@ class FrictionDampedSystem {
     lu_sized_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
     rhs_.setZero(D2);
     r0_.setZero(n_);
+    for (Vector* v : {&b_n_, &res_n_, &dz_n_}) v->setZero(n_);
+    for (Vector* v : {&b_u_, &res_u_, &dz_u_}) v->setZero(D2);
     d_.setZero(D_);
     mu_.setZero(D_);
     F_.setZero(n_, D2);
@@ -816,9 +821,11 @@ class FrictionDampedSystem {
   /// mode, which evaluates it; never inside a step). Every row is assembled with A_jj = 1 except
   /// a slip row whose diagonal 1 - s_i mu_i is below 1/2 in magnitude (a row with |A_jj| >= 1/2 is
   /// divided by it in moving_damper, which costs six divisions instead of a pass over F). The
-  /// mode-space form needs A = I - no such row - else the capacitance form. The factorisation is kept while its key (per unknown: column, X, mu,
-  /// slope) is unchanged - while the unknowns belong to stuck dampers (X constant) or to a fixed
-  /// contact with a constant slip coefficient - so that such calls cost O(n U + U^2).
+  /// mode-space form needs A = I - no such row - else the capacitance form. The factorisation is
+  /// kept while its key (per unknown: column, X, mu, slope) is unchanged - while the unknowns
+  /// belong to stuck dampers (X constant) or to a fixed contact with a constant slip coefficient -
+  /// so that such calls cost O(n U + U^2). When only X, mu or the slope changed and the system is
+  /// larger than 8 x 8, refine() tries iterative refinement from the old factorisation first.
   void solve_unknowns(Index U) const {
     const Index n = n_;
     Evaluation& e = eval_;
@@ -830,6 +837,13 @@ class FrictionDampedSystem {
     // (std::equal stops at the first difference: a slipping damper's key changes at every call)
     const bool reuse = factor_unknowns_ == U &&
                        std::equal(key_.data(), key_.data() + 4 * U, factor_key_.data());
+    if (!reuse && options_.refine_stale_factorisation && factor_unknowns_ == U &&
+        padded_order(factor_mode_space_ ? n : U) > 8 && same_columns(U) && refine(F, L, A, c, u)) {
+      solve_info_.unknowns = U;
+      solve_info_.mode_space = factor_mode_space_;
+      solve_info_.system_size = factor_mode_space_ ? n : U;
+      return;  // (the factorisation and its key stay those of the matrix factorised)
+    }
     if (!reuse) {
       const double nd = static_cast<double>(n), ud = static_cast<double>(U);
       // Products + LU, the LU at the order actually factorised (padded_order: 2, 4, 6 or 8).
@@ -889,6 +903,86 @@ class FrictionDampedSystem {
     solve_info_.system_size = order;
     solve_info_.reused = reuse;
   }
+
+  /// True when the unknowns are the same forces as those of the stored factorisation (same
+  /// columns of z = [N; f], in the same order); X, mu and slope may differ.
+  bool same_columns(Index U) const {
+    for (Index j = 0; j < U; ++j)
+      if (key_[4 * j] != factor_key_[4 * j]) return false;
+    return true;
+  }
+
+  /// Iterative refinement with the stored factorisation of a matrix M0 of the same form and
+  /// columns (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., ch. 12: fixed
+  /// precision refinement): z <- z + M0^-1 (b - M z), with the residual of the current matrix M
+  /// formed from F and L (2 n U multiply-adds) in place of forming and factorising M
+  /// (n U min(n, U) + min(n, U)^3 / 3). Converges when the corrections contract, i.e. when M is
+  /// close to M0 - a slipping contact that moved by a stage's step. Accepted when a correction is
+  /// below kRefineTol relative to z (max norm); abandoned (false, the caller refactorises) when a
+  /// correction fails to halve or after kMaxRefinements, so a large change costs a few products.
+  /// F, L: the n x U directions, A, c: diagonal and right side, u: the unknowns (views of the
+  /// workspace, as in solve_unknowns).
+  template <class Directions, class Coefficients, class Unknowns>
+  bool refine(const Directions& F, const Directions& L, const Coefficients& A, const Coefficients& c,
+              Unknowns u) const {
+    const Index U = u.size();
+    Evaluation& e = eval_;
+    Scalar previous = std::numeric_limits<Scalar>::infinity();
+    if (factor_mode_space_) {
+      if (!(A.array() == Scalar(1)).all()) return false;  // the mode-space form needs A = I
+      // (I + F L^T) q'' = b = r0 + F c
+      auto t = rhs_.head(U);  // L^T q''
+      b_n_ = r0_;
+      b_n_.noalias() += F * c;
+      e.qdd.noalias() = lun_.solve(b_n_);
+      for (int k = 1; k <= kMaxRefinements; ++k) {
+        t.noalias() = L.transpose() * e.qdd;
+        res_n_ = b_n_ - e.qdd;
+        res_n_.noalias() -= F * t;
+        dz_n_.noalias() = lun_.solve(res_n_);
+        e.qdd += dz_n_;
+        const Scalar size = dz_n_.cwiseAbs().maxCoeff();
+        if (size <= kRefineTol * e.qdd.cwiseAbs().maxCoeff()) {
+          u = c;
+          u.noalias() -= L.transpose() * e.qdd;
+          solve_info_.refinements = k;
+          return true;
+        }
+        if (!(size <= Scalar(0.5) * previous)) return false;
+        previous = size;
+      }
+      return false;
+    }
+    // (A + L^T F) u = b = c - L^T r0
+    Eigen::PartialPivLU<Matrix>& lu = sized_lu(U);
+    auto b = b_u_.head(U);
+    auto res = res_u_.head(U);
+    auto dz = dz_u_.head(U);
+    b = c;
+    b.noalias() -= L.transpose() * r0_;
+    u.noalias() = lu.solve(b);
+    for (int k = 1; k <= kMaxRefinements; ++k) {
+      res_n_.noalias() = F * u;
+      res = b - A.cwiseProduct(u);
+      res.noalias() -= L.transpose() * res_n_;
+      dz.noalias() = lu.solve(res);
+      u += dz;
+      const Scalar size = dz.cwiseAbs().maxCoeff();
+      if (size <= kRefineTol * u.cwiseAbs().maxCoeff()) {
+        e.qdd = r0_;
+        e.qdd.noalias() += F * u;
+        solve_info_.refinements = k;
+        return true;
+      }
+      if (!(size <= Scalar(0.5) * previous)) return false;
+      previous = size;
+    }
+    return false;
+  }
+  static constexpr int kMaxRefinements = 6;
+  /// Relative size (max norm) of the last correction at which refinement stops: 16 units of
+  /// round-off, about the accuracy of the direct LU solve of these well-conditioned matrices.
+  static constexpr Scalar kRefineTol = Scalar(16) * std::numeric_limits<Scalar>::epsilon();
 
   /// The capacitance form for U <= K unknowns in a fixed K x K system padded with identity rows:
   /// (A + L^T F) u = c - L^T r0, then q'' = r0 + F u. Coefficient-based products: for a K x K
@@ -1077,6 +1171,7 @@ class FrictionDampedSystem {
   // Reduced unknowns of the solve: force directions F, row directions L, diagonal A, right side c.
   mutable Matrix F_, L_, S_, Mn_;
   mutable Vector A_, c_, u_, rhs_;
+  mutable Vector b_n_, res_n_, dz_n_, b_u_, res_u_, dz_u_;  // refinement (refine())
   mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
   mutable Index num_unknowns_ = 0;
   // Moving slipping dampers (moving_damper): element of the contact and the weights of u1, u2.

@@ -25,6 +25,15 @@ struct ModelOptions {
   /// What happens when a contact point reaches a member end (component 3's policy): Throw stops
   /// the run with a "left member" status; Extrapolate/Clamp continue with that approximation.
   EndPolicy end_policy = EndPolicy::Throw;
+  /// When the acceleration solve's matrix changed since its last factorisation but has the same
+  /// unknowns (slipping contacts that moved, new slopes), and the system is larger than the
+  /// fixed-size 8 x 8 ones: solve by iterative refinement from the old factorisation (a few
+  /// products with F and L) while it converges, instead of forming and factorising the new
+  /// matrix. Results agree with the direct solve to round-off (relative 16 eps per correction
+  /// criterion) but depend, at that level, on which matrix was factorised last (the call
+  /// history). Off: every changed matrix is refactorised and the result is a function of the
+  /// state alone, bitwise.
+  bool refine_stale_factorisation = true;
 };
 
 }  // namespace stickslip
