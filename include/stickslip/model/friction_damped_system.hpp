@@ -989,10 +989,12 @@ class FrictionDampedSystem {
   /// result GEMM/GEMV packing costs more than it saves.
   template <int K, class Factor>
   void solve_small(Index U, bool reuse, Factor& lu) const {
-    if (U == K)  // no padding: products with K columns known at compile time
-      solve_small_products<K>(K, reuse, lu);
-    else
-      solve_small_products<Eigen::Dynamic, K>(U, reuse, lu);
+    // No padding: products with K columns known at compile time. Only for K <= 4 (the blade's
+    // 2 slipping and 4 stuck unknowns), to keep the instantiations per system type few.
+    if constexpr (K <= 4) {
+      if (U == K) return solve_small_products<K>(K, reuse, lu);
+    }
+    solve_small_products<Eigen::Dynamic, K>(U, reuse, lu);
   }
   /// solve_small with Cols (or, for Eigen::Dynamic, U) columns of F and L in a K x K system.
   template <int Cols, int K = Cols, class Factor>
