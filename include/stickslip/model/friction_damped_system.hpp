@@ -820,7 +820,7 @@ class FrictionDampedSystem {
   /// LU allocated by the first solve with that many unknowns (in a run: the transition into the
   /// mode, which evaluates it; never inside a step). Every row is assembled with A_jj = 1 except
   /// a slip row whose diagonal 1 - s_i mu_i is below 1/2 in magnitude (a row with |A_jj| >= 1/2 is
-  /// divided by it in moving_damper, which costs six divisions instead of a pass over F). The
+  /// divided by it in moving_damper: one division and seven products instead of a pass over F). The
   /// mode-space form needs A = I - no such row - else the capacitance form. The factorisation is
   /// kept while its key (per unknown: column, X, mu, slope) is unchanged - while the unknowns
   /// belong to stuck dampers (X constant) or to a fixed contact with a constant slip coefficient -
