@@ -556,8 +556,10 @@ class FrictionDampedSystem {
     for (Vector* v : {&b_u_, &res_u_, &dz_u_}) v->setZero(D2);
     d_.setZero(D_);
     mu_.setZero(D_);
-    F_.setZero(n_, D2);
-    L_.setZero(n_, D2);
+    // (rows n..padded_order(n) stay zero: the fixed-size mode-space form reads K = padded_order(n)
+    // rows of every column for n <= 8; everything else reads and writes the first n)
+    F_.setZero(padded_order(n_), D2);
+    L_.setZero(padded_order(n_), D2);
     A_.setZero(D2);
     c_.setZero(D2);
     u_.setZero(D2);
@@ -657,22 +659,22 @@ class FrictionDampedSystem {
       if (stuck) {  // stick rows (eq 11 with x'' = b^T q''): N_i + m a^T q'' = N0, f_i - m b^T q'' = k x
         if (inertial) {
           const Index j = add_unknown(i, Scalar(1), dmp.preload, Scalar(0), Scalar(0));
-          F_.col(j) = a;
-          L_.col(j) = m * a;
+          modal(F_.col(j)) = a;
+          modal(L_.col(j)) = m * a;
         } else {
           e.N[i] = dmp.preload;
           r0_.noalias() += dmp.preload * a;
         }
         const Index j = add_unknown(i, Scalar(1), k * xi, Scalar(0), Scalar(0), D + i);
-        F_.col(j) = -b;
-        L_.col(j) = -m * b;
+        modal(F_.col(j)) = -b;
+        modal(L_.col(j)) = -m * b;
       } else {  // slip rows (15-16 with 19 and 22): f_i = -mu_i N_i
         const Scalar mu = slip_coefficient(i, s, V);
         mu_[i] = mu;
         if (inertial) {
           const Index j = add_unknown(i, Scalar(1), dmp.preload, mu, Scalar(0));
-          F_.col(j) = a + mu * b;
-          L_.col(j) = m * a;
+          modal(F_.col(j)) = a + mu * b;
+          modal(L_.col(j)) = m * a;
         } else {
           e.N[i] = dmp.preload;
           e.f[i] = -mu * dmp.preload;
@@ -836,8 +838,8 @@ class FrictionDampedSystem {
   void solve_unknowns(Index U) const {
     const Index n = n_;
     Evaluation& e = eval_;
-    const auto F = F_.leftCols(U);
-    const auto L = L_.leftCols(U);
+    const auto F = F_.topLeftCorner(n, U);
+    const auto L = L_.topLeftCorner(n, U);
     const auto A = A_.head(U);
     const auto c = c_.head(U);
     auto u = u_.head(U);
@@ -1028,42 +1030,27 @@ class FrictionDampedSystem {
   }
 
   /// The mode-space form for n <= K modes in a fixed K x K system padded with identity rows
-  /// (A = I, see solve_unknowns): (I + F L^T) q'' = r0 + F c, then u = c - L^T q''. Plain loops
-  /// over contiguous columns of F and L (rank-1 updates, axpys and dots of length n): Eigen's
-  /// coefficient-based products on these dynamic-length blocks measured up to 2x slower with
-  /// AVX-512 (n <= 8 fills no 8-wide packet) and 5-10 % slower with SSE2.
+  /// (A = I, see solve_unknowns): (I + F L^T) q'' = r0 + F c, then u = c - L^T q''. F_ and L_
+  /// have K rows here, zero below row n, so the products run on K x U blocks with K fixed (a
+  /// zero row of F leaves an identity row of the matrix; a zero row of L an identity column).
   template <int K, class Factor>
   void solve_mode_space_small(Index U, bool reuse, Factor& lu) const {
-    const Index n = n_, ldf = F_.outerStride(), ldl = L_.outerStride();
-    const Scalar* F = F_.data();
-    const Scalar* L = L_.data();
+    using Fixed = Eigen::Matrix<Scalar, K, Eigen::Dynamic>;
+    const Eigen::Map<const Fixed> F(F_.data(), K, U), L(L_.data(), K, U);
+    const auto c = c_.head(U);
     if (!reuse) {
       Eigen::Matrix<Scalar, K, K> M = Eigen::Matrix<Scalar, K, K>::Identity();
-      for (Index k = 0; k < n; ++k) {
-        Scalar* m = M.col(k).data();
-        for (Index j = 0; j < U; ++j) {
-          const Scalar l = L[j * ldl + k];
-          const Scalar* f = F + j * ldf;
-          for (Index r = 0; r < n; ++r) m[r] += l * f[r];
-        }
-      }
+      M.noalias() += F.lazyProduct(L.transpose());
       lu.compute(M);
     }
     Eigen::Matrix<Scalar, K, 1> rhs = Eigen::Matrix<Scalar, K, 1>::Zero();
-    rhs.template segment<Modes>(0, n) = modal(r0_);
-    for (Index j = 0; j < U; ++j) {
-      const Scalar cj = c_[j];
-      const Scalar* f = F + j * ldf;
-      for (Index r = 0; r < n; ++r) rhs[r] += cj * f[r];
-    }
+    rhs.template segment<Modes>(0, n_) = modal(r0_);
+    rhs.noalias() += F.lazyProduct(c);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(rhs);
-    modal(eval_.qdd) = z.template segment<Modes>(0, n);
-    for (Index j = 0; j < U; ++j) {
-      const Scalar* l = L + j * ldl;
-      Scalar t = 0;
-      for (Index r = 0; r < n; ++r) t += l[r] * z[r];
-      u_[j] = c_[j] - t;
-    }
+    modal(eval_.qdd) = z.template segment<Modes>(0, n_);
+    auto u = u_.head(U);
+    u = c;
+    u.noalias() -= L.transpose().lazyProduct(z);
   }
 
   /// Order of the matrix factorised for m unknowns (capacitance form) or m modes (mode space):
