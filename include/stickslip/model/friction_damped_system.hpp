@@ -1062,11 +1062,9 @@ class FrictionDampedSystem {
   template <int K>
   static constexpr bool fits_order() noexcept { return Modes == Eigen::Dynamic || Modes <= K; }
 
-  // Views with the compile-time number of modes as their number of rows.
+  // A view with the compile-time number of modes as its number of rows.
   template <class V>
   auto modal(V&& v) const { return v.template segment<Modes>(0, n_); }
-  template <class M>
-  auto modal_cols(M& m, Index cols) const { return m.template block<Modes, Eigen::Dynamic>(0, 0, n_, cols); }
   /// Element e's n x 6 nodal block of damper iu's member (MemberShapes::element_block).
   auto element_block(std::size_t iu, Index e) const {
     const auto B = shapes_[static_cast<std::size_t>(damper_shape_[iu])].element_block(e);
