@@ -719,8 +719,9 @@ class FrictionDampedSystem {
   /// (docs/model.md, with the convective terms), from the element's n x 6 nodal block B and the shape-function weights
   /// at X (MemberShapes::locate). Every shape vector is B times a 6-vector of weights, so the
   /// projections need only P = B^T [q q'] (one n x 6 x 2 product) and the two columns of the solve
-  /// are F_j = B (c_a + mu c_b), L_j = B (m c_a - m s c_b): 26 n multiply-adds and no shape vectors,
-  /// against 31 n for evaluating the five shape vectors and projecting them one by one.
+  /// are F_j = B (c_a + mu c_b), L_j = B (m c_a - m s c_b) (slip_columns): 21 n multiplies and no
+  /// shape vectors, against 31 n multiply-adds for evaluating the five shape vectors and projecting
+  /// them one by one.
   void moving_damper(Index i, const Mode& mode, const State& x) const {
     using Vec6 = Eigen::Matrix<Scalar, 6, 1>;
     const std::size_t iu = static_cast<std::size_t>(i);
@@ -765,25 +766,44 @@ class FrictionDampedSystem {
     d_[i] = dd;
     const Scalar mu = slip_coefficient(i, mode[i], V);
     mu_[i] = mu;
-    const Vec6 cf = ca + mu * cb;
     if (inertial_[iu]) {
       const Scalar sc = options_.convective_terms ? slope : Scalar(0);
       Scalar diag = Scalar(1) - sc * mu, rhs = dmp.preload - m * h + sc * k * xi + m * sc * dd;
-      Vec6 cl = m * ca - (m * sc) * cb;
+      Scalar la = m, lb = -m * sc;  // L_j = B (la c_a + lb c_b)
       using std::abs;
       if (diag != Scalar(1) && abs(diag) >= Scalar(0.5)) {  // the row over its diagonal (solve_unknowns)
         const Scalar inv = Scalar(1) / diag;
-        cl *= inv;
+        la *= inv;
+        lb *= inv;
         rhs *= inv;
         diag = Scalar(1);
       }
       const Index j = add_unknown(i, diag, rhs, mu, sc);
-      block_times<false>(modal(F_.col(j)), B, cf);
-      block_times<false>(modal(L_.col(j)), B, cl);
+      slip_columns(modal(F_.col(j)), modal(L_.col(j)), B, ca, cb, mu, la, lb);
     } else {
       e.N[i] = dmp.preload;
       e.f[i] = -mu * dmp.preload;
-      block_times<true>(modal(r0_), B, dmp.preload * cf);
+      block_times<true>(modal(r0_), B, dmp.preload * (ca + mu * cb));
+    }
+  }
+
+  /// The two columns of a moving slipping damper's unknown from one pass over its n x 6 block B:
+  /// with the shape vectors a = B c_a (four nonzero weights) and b = B c_b (two),
+  /// F_j = a + mu b and L_j = la a + lb b - 15 operations per mode instead of the 22 of two
+  /// six-term products, and B read once.
+  template <class DstF, class DstL, class Block6>
+  static void slip_columns(DstF&& dstF, DstL&& dstL, const Block6& B, const Eigen::Matrix<Scalar, 6, 1>& ca,
+                           const Eigen::Matrix<Scalar, 6, 1>& cb, Scalar mu, Scalar la, Scalar lb) {
+    const Index n = B.rows(), s = B.outerStride();
+    const Scalar* bu1 = B.data();
+    Scalar* f = dstF.data();
+    Scalar* l = dstL.data();
+    const Scalar a1 = ca[1], a2 = ca[2], a4 = ca[4], a5 = ca[5], b0 = cb[0], b3 = cb[3];
+    for (Index r = 0; r < n; ++r) {
+      const Scalar a = a1 * bu1[r + s] + a2 * bu1[r + 2 * s] + a4 * bu1[r + 4 * s] + a5 * bu1[r + 5 * s];
+      const Scalar b = b0 * bu1[r] + b3 * bu1[r + 3 * s];
+      f[r] = a + mu * b;
+      l[r] = la * a + lb * b;
     }
   }
 
