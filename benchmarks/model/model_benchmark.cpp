@@ -13,6 +13,8 @@
 #include <benchmark/benchmark.h>
 #include <stickslip/stickslip.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -60,111 +62,182 @@ Eigen::VectorXd random_modal_state(Index n) {
   return qqd;
 }
 
-/// The composed right-hand side; `Sys` is FrictionDampedSystem<double> or its fixed-Modes form.
+/// The composed right-hand side of one (n, D, stuck) case; `Sys` is FrictionDampedSystem<double>
+/// or its fixed-Modes form. call() evaluates it once.
 template <class Sys>
-void rhs_composed(benchmark::State& st, Index n, Index D, bool stuck) {
-  RhsFrame f = make_frame(n, D);
-  std::vector<PointDamper<double>> dampers;
-  for (Index i = 0; i < D; ++i)
-    dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3));
-  Sys sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
-  typename Sys::State x = sys.initial_state();
-  x.head(2 * n) = random_modal_state(n);
-  typename Sys::Mode mode(D);
-  for (Index i = 0; i < D; ++i) {
-    const double sign = i % 2 == 0 ? 1.0 : -1.0;
-    const double follow = x.segment(n, n).dot(sys.point_shape(f.member, f.X[static_cast<std::size_t>(i)], LoadDirection::Axial));
-    x[sys.xd_offset() + i] = follow + (stuck ? 0.0 : 0.01 * sign);
-    x[sys.x_offset() + i] = 1e-5 * sign;
-    mode[i] = stuck ? ContactState::Stick : (sign > 0 ? ContactState::SlipPositive : ContactState::SlipNegative);
+class ComposedRhs {
+ public:
+  ComposedRhs(Index n, Index D, bool stuck) : f_(make_frame(n, D)), sys_(make_system(f_, D)) {
+    x_ = sys_.initial_state();
+    x_.head(2 * n) = random_modal_state(n);
+    mode_ = typename Sys::Mode(D);
+    for (Index i = 0; i < D; ++i) {
+      const double sign = i % 2 == 0 ? 1.0 : -1.0;
+      const double follow = x_.segment(n, n).dot(sys_.point_shape(f_.member, f_.X[static_cast<std::size_t>(i)], LoadDirection::Axial));
+      x_[sys_.xd_offset() + i] = follow + (stuck ? 0.0 : 0.01 * sign);
+      x_[sys_.x_offset() + i] = 1e-5 * sign;
+      mode_[i] = stuck ? ContactState::Stick : (sign > 0 ? ContactState::SlipPositive : ContactState::SlipNegative);
+    }
+    // Successive calls alternate between two states, as integrator stages do: q, q', x, x'
+    // differ, and so do the contact coordinates of slipping dampers (stuck dampers' X is constant
+    // in a run). Every call therefore redoes what a stage redoes: the evaluation cache never hits,
+    // and the acceleration solve keeps its factorisation, and a damper its shapes, only where a
+    // run would (stuck dampers).
+    xb_ = x_;
+    xb_.head(2 * n + 2 * D) *= 1.0 + 1e-3;
+    if (!stuck) xb_.segment(sys_.contact_offset(), D).array() += 1e-7;
+    dx_.resize(x_.size());
   }
-  // Successive calls alternate between two states, as integrator stages do: q, q', x, x' differ,
-  // and so do the contact coordinates of slipping dampers (stuck dampers' X is constant in a run).
-  // Every call therefore redoes what a stage redoes: the evaluation cache never hits, and the
-  // acceleration solve keeps its factorisation, and a damper its shapes, only where a run would
-  // (stuck dampers).
-  typename Sys::State xb = x;
-  xb.head(2 * n + 2 * D) *= 1.0 + 1e-3;
-  if (!stuck) xb.segment(sys.contact_offset(), D).array() += 1e-7;
-  const typename Sys::State* states[2] = {&x, &xb};
-  typename Sys::State dx(x.size());
-  double t = 0;
-  long k = 0;
-  for (auto _ : st) {
-    t += 1e-9;
-    sys.rhs(mode, t, *states[++k & 1], dx);
-    benchmark::DoNotOptimize(dx.data());
+  void call() {
+    t_ += 1e-9;
+    sys_.rhs(mode_, t_, (++k_ & 1) ? xb_ : x_, dx_);
+    benchmark::DoNotOptimize(dx_.data());
     benchmark::ClobberMemory();
   }
-  st.SetLabel(stuck ? "stuck" : "slipping");
-}
+
+ private:
+  static Sys make_system(const RhsFrame& f, Index D) {
+    std::vector<PointDamper<double>> dampers;
+    for (Index i = 0; i < D; ++i)
+      dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3));
+    return Sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
+  }
+  RhsFrame f_;
+  Sys sys_;
+  typename Sys::State x_, xb_, dx_;
+  typename Sys::Mode mode_;
+  double t_ = 0;
+  long k_ = 0;
+};
+
+/// The bare modal right-hand side with the same moving-shape evaluations and no contact algebra:
+/// q'' = -omega^2 q + sum_i (N_i psi_w(X_i) - f_i psi_u(X_i)), N and f given. Modes = 6 gives the
+/// fixed-size form (MemberShapes<double, 6>, fixed-size vectors).
+template <int Modes>
+class BareRhs {
+  using Vec = Eigen::Matrix<double, Modes, 1>;
+
+ public:
+  BareRhs(Index n, Index D)
+      : n_(n), D_(D), f_(make_frame(n, D)), shapes_(f_.frame, f_.member, f_.basis, EndPolicy::Extrapolate),
+        values_(static_cast<std::size_t>(D)), cursors_(static_cast<std::size_t>(D)),
+        omega2_(f_.basis.omega().array().square().matrix()), x_(2 * n + D), dx_(2 * n),
+        N_(Eigen::VectorXd::Constant(D, 10.0)), fr_(Eigen::VectorXd::Constant(D, 3.0)) {
+    for (auto& v : values_) v.resize(n);
+    x_.head(2 * n) = random_modal_state(n);
+    for (Index i = 0; i < D; ++i) x_[2 * n + i] = f_.X[static_cast<std::size_t>(i)];
+  }
+  void call() {
+    const Index n = n_;
+    dx_.head(n) = x_.segment(n, n);
+    auto acc = dx_.template segment<Modes>(n, n);
+    acc.noalias() = -omega2_.cwiseProduct(x_.template segment<Modes>(0, n));
+    for (Index i = 0; i < D_; ++i) {
+      auto& v = values_[static_cast<std::size_t>(i)];
+      shapes_.evaluate(x_[2 * n + i], v, cursors_[static_cast<std::size_t>(i)]);
+      acc.noalias() += N_[i] * v.psi_w - fr_[i] * v.psi_u;
+    }
+    benchmark::DoNotOptimize(dx_.data());
+    benchmark::ClobberMemory();
+  }
+
+ private:
+  Index n_, D_;
+  RhsFrame f_;
+  MemberShapes<double, Modes> shapes_;
+  std::vector<ShapeValues<double, Modes>> values_;
+  std::vector<ElementCursor> cursors_;
+  Vec omega2_;
+  Eigen::VectorXd x_, dx_, N_, fr_;
+};
+
+using FixedSystem6 = FrictionDampedSystem<double, FrictionLawVariant<double>, 6>;
 
 void BM_RhsComposed(benchmark::State& st) {
-  rhs_composed<System>(st, st.range(0), st.range(1), st.range(2) != 0);
+  ComposedRhs<System> rhs(st.range(0), st.range(1), st.range(2) != 0);
+  for (auto _ : st) rhs.call();
+  st.SetLabel(st.range(2) != 0 ? "stuck" : "slipping");
 }
 
 /// The composed right-hand side with the number of modes fixed at compile time (Modes = 6).
 void BM_RhsComposedFixed6(benchmark::State& st) {
-  rhs_composed<FrictionDampedSystem<double, FrictionLawVariant<double>, 6>>(st, 6, st.range(0), st.range(1) != 0);
+  ComposedRhs<FixedSystem6> rhs(6, st.range(0), st.range(1) != 0);
+  for (auto _ : st) rhs.call();
+  st.SetLabel(st.range(1) != 0 ? "stuck" : "slipping");
 }
 
-/// The bare modal right-hand side with the same moving-shape evaluations and no contact algebra:
-/// q'' = -omega^2 q + sum_i (N_i psi_w(X_i) - f_i psi_u(X_i)), N and f given.
 void BM_RhsBare(benchmark::State& st) {
-  const Index n = st.range(0), D = st.range(1);
-  RhsFrame f = make_frame(n, D);
-  const MemberShapes<double> shapes(f.frame, f.member, f.basis, EndPolicy::Extrapolate);
-  std::vector<ShapeValues<double>> values(static_cast<std::size_t>(D), ShapeValues<double>(n));
-  std::vector<ElementCursor> cursors(static_cast<std::size_t>(D));
-  const Eigen::VectorXd omega2 = f.basis.omega().array().square().matrix();
-  Eigen::VectorXd x(2 * n + D), dx(2 * n);
-  x.head(2 * n) = random_modal_state(n);
-  for (Index i = 0; i < D; ++i) x[2 * n + i] = f.X[static_cast<std::size_t>(i)];
-  const Eigen::VectorXd N = Eigen::VectorXd::Constant(D, 10.0), fr = Eigen::VectorXd::Constant(D, 3.0);
-  for (auto _ : st) {
-    dx.head(n) = x.segment(n, n);
-    dx.tail(n).noalias() = -omega2.cwiseProduct(x.head(n));
-    for (Index i = 0; i < D; ++i) {
-      auto& v = values[static_cast<std::size_t>(i)];
-      shapes.evaluate(x[2 * n + i], v, cursors[static_cast<std::size_t>(i)]);
-      dx.tail(n).noalias() += N[i] * v.psi_w - fr[i] * v.psi_u;
-    }
-    benchmark::DoNotOptimize(dx.data());
-    benchmark::ClobberMemory();
-  }
+  BareRhs<Eigen::Dynamic> rhs(st.range(0), st.range(1));
+  for (auto _ : st) rhs.call();
 }
 
-/// The same with a compile-time number of modes (MemberShapes<double, 6>, fixed-size vectors).
 void BM_RhsBareFixed6(benchmark::State& st) {
-  constexpr int n = 6;
-  const Index D = st.range(0);
-  RhsFrame f = make_frame(n, D);
-  const MemberShapes<double, n> shapes(f.frame, f.member, f.basis, EndPolicy::Extrapolate);
-  std::vector<ShapeValues<double, n>> values(static_cast<std::size_t>(D));
-  std::vector<ElementCursor> cursors(static_cast<std::size_t>(D));
-  const Eigen::Matrix<double, n, 1> omega2 = f.basis.omega().array().square().matrix();
-  Eigen::VectorXd x(2 * n + D);
-  Eigen::Matrix<double, 2 * n, 1> dx;
-  x.head(2 * n) = random_modal_state(n);
-  for (Index i = 0; i < D; ++i) x[2 * n + i] = f.X[static_cast<std::size_t>(i)];
-  const Eigen::VectorXd N = Eigen::VectorXd::Constant(D, 10.0), fr = Eigen::VectorXd::Constant(D, 3.0);
-  for (auto _ : st) {
-    dx.head<n>() = x.segment<n>(n);
-    dx.tail<n>().noalias() = -omega2.cwiseProduct(x.head<n>());
-    for (Index i = 0; i < D; ++i) {
-      auto& v = values[static_cast<std::size_t>(i)];
-      shapes.evaluate(x[2 * n + i], v, cursors[static_cast<std::size_t>(i)]);
-      dx.tail<n>().noalias() += N[i] * v.psi_w - fr[i] * v.psi_u;
-    }
-    benchmark::DoNotOptimize(dx.data());
-    benchmark::ClobberMemory();
+  BareRhs<6> rhs(6, st.range(0));
+  for (auto _ : st) rhs.call();
+}
+
+/// The ratio composed / bare as a paired measurement: each benchmark iteration times a block of
+/// kBlock bare calls and then a block of kBlock composed calls (steady clock), and the counters
+/// report the medians over the iterations of the two per-call times and of the per-iteration
+/// ratio. Both halves of a pair run within ~0.1-1 ms of each other, so a slow phase of a shared
+/// machine (which moves separate benchmarks' medians by 10-20 % on the VM of docs/performance.md)
+/// affects both; the median discards pairs hit by a preemption.
+template <class Composed, class Bare>
+void rhs_paired(benchmark::State& st, Composed& composed, Bare& bare) {
+  constexpr int kBlock = 128;
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> bare_ns, composed_ns, ratio;
+  for (int k = 0; k < kBlock; ++k) {  // warm both (caches, the solve's first factorisation)
+    bare.call();
+    composed.call();
   }
+  for (auto _ : st) {
+    const auto t0 = Clock::now();
+    for (int k = 0; k < kBlock; ++k) bare.call();
+    const auto t1 = Clock::now();
+    for (int k = 0; k < kBlock; ++k) composed.call();
+    const auto t2 = Clock::now();
+    const double b = std::chrono::duration<double, std::nano>(t1 - t0).count() / kBlock;
+    const double c = std::chrono::duration<double, std::nano>(t2 - t1).count() / kBlock;
+    bare_ns.push_back(b);
+    composed_ns.push_back(c);
+    ratio.push_back(c / b);
+  }
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  if (ratio.empty()) return;
+  st.counters["bare_ns"] = median(bare_ns);
+  st.counters["composed_ns"] = median(composed_ns);
+  st.counters["ratio"] = median(ratio);
+  st.counters["pairs"] = static_cast<double>(ratio.size());
+}
+
+void BM_RhsPaired(benchmark::State& st) {
+  const Index n = st.range(0), D = st.range(1);
+  const bool stuck = st.range(2) != 0;
+  ComposedRhs<System> composed(n, D, stuck);
+  BareRhs<Eigen::Dynamic> bare(n, D);
+  rhs_paired(st, composed, bare);
+  st.SetLabel(stuck ? "stuck" : "slipping");
+}
+
+void BM_RhsPairedFixed6(benchmark::State& st) {
+  const bool stuck = st.range(1) != 0;
+  ComposedRhs<FixedSystem6> composed(6, st.range(0), stuck);
+  BareRhs<6> bare(6, st.range(0));
+  rhs_paired(st, composed, bare);
+  st.SetLabel(stuck ? "stuck" : "slipping");
 }
 
 BENCHMARK(BM_RhsBare)->ArgsProduct({{6, 24, 96}, {2, 8, 32}});
 BENCHMARK(BM_RhsBareFixed6)->Arg(2)->Arg(8)->Arg(32);
 BENCHMARK(BM_RhsComposed)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}});
 BENCHMARK(BM_RhsComposedFixed6)->ArgsProduct({{2, 8, 32}, {0, 1}});
+// (a fixed number of pairs: the blocks of the largest case, 128 x 17 us, take 2 s)
+BENCHMARK(BM_RhsPaired)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}})->Iterations(401);
+BENCHMARK(BM_RhsPairedFixed6)->ArgsProduct({{2, 8, 32}, {0, 1}})->Iterations(401);
 
 // ---- the default blade scene: one step, one located event ---------------------------------------
 
