@@ -189,6 +189,14 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
     r.transitions_per_period = static_cast<double>(switches[i]) / periods;
     r.regime = r.stick_fraction >= 0.999 ? "stick" : (r.stick_fraction < 0.05 ? "gross slip" : "stick-slip");
   }
+  if (rec.window.empty()) {  // stopped before the recording window: no statistics (NaN, null in JSON)
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    rec.tip_max = rec.tip_rms = none;
+    for (DamperRegime& r : rec.regime) {
+      r.stick_fraction = r.transitions_per_period = none;
+      r.regime = "not reached";
+    }
+  }
   rec.overall_regime = rec.regime[0].regime == rec.regime[1].regime
                            ? rec.regime[0].regime
                            : rec.regime[0].regime + " / " + rec.regime[1].regime;

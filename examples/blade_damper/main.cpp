@@ -284,11 +284,20 @@ void write_run(const fs::path& dir, const blade::RunRecord& r, const Frequencies
 }
 
 void print_run(const blade::RunRecord& r, const Frequencies& fr) {
-  std::printf("N0 = %5.1f N: %-24s tip max %.3e m, rms %.3e m, E = %.4e m^2, stick fractions %.3f / %.3f, "
-              "%.2f / %.2f switches per period, %ld events, %.2f s CPU, f1 frame %.2f Hz, all-stuck %.2f Hz%s%s\n",
-              r.preload, r.overall_regime.c_str(), r.tip_max, r.tip_rms, r.energy_density,
-              r.regime[0].stick_fraction, r.regime[1].stick_fraction, r.regime[0].transitions_per_period,
-              r.regime[1].transitions_per_period, r.total_events, r.cpu_seconds,
+  // A run that stopped before the recording window (or before t2 of the energy window) has no
+  // window statistics (or E): printed as n/a (null in the JSON summaries, nan in sweep.csv).
+  const auto num = [](double v, const char* format) {
+    char buf[32];
+    if (!std::isfinite(v)) return std::string("n/a");
+    std::snprintf(buf, sizeof buf, format, v);
+    return std::string(buf);
+  };
+  std::printf("N0 = %5.1f N: %-24s tip max %s m, rms %s m, E = %s m^2, stick fractions %s / %s, "
+              "%s / %s switches per period, %ld events, %.2f s CPU, f1 frame %.2f Hz, all-stuck %.2f Hz%s%s\n",
+              r.preload, r.overall_regime.c_str(), num(r.tip_max, "%.3e").c_str(), num(r.tip_rms, "%.3e").c_str(),
+              num(r.energy_density, "%.4e").c_str(), num(r.regime[0].stick_fraction, "%.3f").c_str(),
+              num(r.regime[1].stick_fraction, "%.3f").c_str(), num(r.regime[0].transitions_per_period, "%.2f").c_str(),
+              num(r.regime[1].transitions_per_period, "%.2f").c_str(), r.total_events, r.cpu_seconds,
               fr.frame.empty() ? 0.0 : fr.frame[0], fr.stuck.empty() ? 0.0 : fr.stuck[0],
               r.status == Status::Success ? "" : " - ", r.status == Status::Success ? "" : r.message.c_str());
 }
