@@ -1138,14 +1138,16 @@ class FrictionDampedSystem {
     return consistent;
   }
 
-  /// Enforce V_i = 0 exactly for stuck dampers: x_i' = q'^T psi_u(X_i).
+  /// Enforce V_i = 0 exactly for stuck dampers: x_i' = q'^T psi_u(X_i). Only the stuck dampers'
+  /// shapes are evaluated (and then kept for the solve that follows: X is unchanged); slipping
+  /// ones are formed in element space by the solve.
   void set_stuck_velocities(const Mode& mode, State& x) {
-    if (options_.moving_contact)
-      for (Index i = 0; i < D_; ++i) evaluate_shapes(i, x[contact_offset() + i]);
     const auto qd = x.segment(n_, n_);
-    for (Index i = 0; i < D_; ++i)
-      if (has_stick_[static_cast<std::size_t>(i)] && mode[i] == ContactState::Stick)
-        x[xd_offset() + i] = qd.dot(C_.col(D_ + i));
+    for (Index i = 0; i < D_; ++i) {
+      if (!has_stick_[static_cast<std::size_t>(i)] || mode[i] != ContactState::Stick) continue;
+      if (options_.moving_contact) evaluate_shapes(i, x[contact_offset() + i]);
+      x[xd_offset() + i] = qd.dot(C_.col(D_ + i));
+    }
   }
 
   TransitionAction stop(StopReason why, Index i, Scalar t, const State& x, const Mode& mode) {
