@@ -109,6 +109,26 @@ TEST(HybridStepperStatus, NonFiniteRightHandSideStopsAtTheRightTime) {
   EXPECT_NEAR(r4.t, 0.5, 1e-12) << r4.message;
 }
 
+// Without guards nothing but the stepper's finiteness check of the step's state and derivative
+// sees a NaN: RK4 has no error estimate (it returns 0), so a non-finite step would otherwise be
+// accepted and the run would end "successfully" with a NaN state.
+TEST(HybridStepperStatus, NonFiniteStepOfAnUnguardedFixedStepRunIsReported) {
+  Oscillator osc;
+  osc.nan_after = 0.5;
+  osc.guarded = false;
+  StepperOptions<double> opt;
+  opt.fixed_step = 1e-3;
+  HybridStepper<Oscillator, RungeKutta4> rk4(osc, opt);
+  const auto r = rk4.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 2.0);
+  EXPECT_EQ(r.status, Status::NonFiniteState) << r.message;
+  // (halving from the fixed step down to min_step, as in the guarded case above)
+  EXPECT_NEAR(r.t, 0.5, 1e-12) << r.message;
+  EXPECT_TRUE(r.x.allFinite());
+  // The state it returns is the exact flow's to RK4 accuracy: (h omega)^4 / 120 per unit time
+  // with h = 1e-3, omega = 3 is ~1e-12; 1e-9 leaves room for the halved last steps.
+  EXPECT_NEAR(r.x[0], std::cos(osc.omega * r.t), 1e-9);
+}
+
 TEST(HybridStepperStatus, MaxStepsEndsTheRunWithItsStatus) {
   Oscillator osc;
   StepperOptions<double> opt;

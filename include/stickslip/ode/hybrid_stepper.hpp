@@ -88,12 +88,12 @@ class HybridStepper {
  private:
   static constexpr bool adaptive_ = Method::adaptive;
 
-  bool finite(const State& v) const { return v.allFinite(); }
+  bool finite(const State& v) const { return detail::all_finite(v); }
 
   bool eval_rhs(const Mode& m, Scalar t, const State& x, State& f, StepperStats& st) {
     sys_.rhs(m, t, x, f);
     ++st.rhs_evaluations;
-    return f.allFinite();
+    return detail::all_finite(f);
   }
 
   void eval_guards(const Mode& m, Scalar t, const State& x, GuardVector& g, StepperStats& st) {
@@ -116,7 +116,7 @@ class HybridStepper {
     }
     guarded_ = ng > 0;
     eval_guards(m, t, x_, ga_, st);
-    if (!ga_.allFinite()) return false;
+    if (!detail::all_finite(ga_)) return false;
     monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
                         opt_.guard_zero_tolerance);
     return true;
@@ -348,10 +348,10 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     ++attempts;
     const Scalar err = core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
     // An infinite error norm of a finite step is a rejection (e.g. atol = 0 on a zero component).
-    bool ok = !std::isnan(err) && x1_.allFinite() && f1_.allFinite();
+    bool ok = !std::isnan(err) && detail::all_finite(x1_) && detail::all_finite(f1_);
     if (ok && guarded_) {
       eval_guards(mode, t1, x1_, gb_, st);
-      ok = gb_.allFinite();
+      ok = detail::all_finite(gb_);
     }
     if (!ok) {
       // Shrink towards the first non-finite point; report it once the step is below min_step.
