@@ -179,9 +179,9 @@ void BM_RhsBareFixed6(benchmark::State& st) {
 /// The ratio composed / bare as a paired measurement: each benchmark iteration times a block of
 /// kBlock bare calls and then a block of kBlock composed calls (steady clock), and the counters
 /// report the medians over the iterations of the two per-call times and of the per-iteration
-/// ratio. Both halves of a pair run within ~0.1-1 ms of each other, so a slow phase of a shared
-/// machine (which moves separate benchmarks' medians by 10-20 % on the VM of docs/performance.md)
-/// affects both; the median discards pairs hit by a preemption.
+/// ratio. Both halves of a pair run within 7 us (n = 6, D = 2) to 2 ms (n = 96, D = 32) of each
+/// other, so a slow phase of a shared machine (which moved separate benchmarks' medians by 10 % to
+/// 2x on the VM of docs/performance.md) affects both; the median discards pairs hit by a preemption.
 template <class Composed, class Bare>
 void rhs_paired(benchmark::State& st, Composed& composed, Bare& bare) {
   constexpr int kBlock = 128;
@@ -235,7 +235,7 @@ BENCHMARK(BM_RhsBare)->ArgsProduct({{6, 24, 96}, {2, 8, 32}});
 BENCHMARK(BM_RhsBareFixed6)->Arg(2)->Arg(8)->Arg(32);
 BENCHMARK(BM_RhsComposed)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}});
 BENCHMARK(BM_RhsComposedFixed6)->ArgsProduct({{2, 8, 32}, {0, 1}});
-// (a fixed number of pairs: the blocks of the largest case, 128 x 17 us, take 2 s)
+// (a fixed number of pairs: those of the largest case, 128 x (8 + 13) us each, take ~1 s)
 BENCHMARK(BM_RhsPaired)->ArgsProduct({{6, 24, 96}, {2, 8, 32}, {0, 1}})->Iterations(401);
 BENCHMARK(BM_RhsPairedFixed6)->ArgsProduct({{2, 8, 32}, {0, 1}})->Iterations(401);
 

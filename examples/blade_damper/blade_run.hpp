@@ -172,8 +172,12 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
     sum2 += s.tip * s.tip;
     for (int i = 0; i < 2; ++i) stuck[i] += s.state[i] == static_cast<int>(ContactState::Stick);
   }
-  const double count = double(std::max<std::size_t>(rec.window.size(), 1));
-  rec.tip_rms = std::sqrt(sum2 / count);
+  // A run stopped before the recording window has no window statistics (NaN: null in the JSON).
+  const bool reached = !rec.window.empty();
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  const double count = double(rec.window.size());
+  if (!reached) rec.tip_max = none;
+  rec.tip_rms = reached ? std::sqrt(sum2 / count) : none;
   const double periods = settings.record_window * scene.parameters.force_omega / (2 * M_PI);
   long switches[2] = {0, 0};
   for (const auto& ev : sys.events()) {
@@ -185,17 +189,14 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   rec.total_events = static_cast<long>(sys.events().size());
   for (int i = 0; i < 2; ++i) {
     DamperRegime& r = rec.regime[i];
+    if (!reached) {
+      r.stick_fraction = r.transitions_per_period = none;
+      r.regime = "not reached";
+      continue;
+    }
     r.stick_fraction = stuck[i] / count;
     r.transitions_per_period = static_cast<double>(switches[i]) / periods;
     r.regime = r.stick_fraction >= 0.999 ? "stick" : (r.stick_fraction < 0.05 ? "gross slip" : "stick-slip");
-  }
-  if (rec.window.empty()) {  // stopped before the recording window: no statistics (NaN, null in JSON)
-    const double none = std::numeric_limits<double>::quiet_NaN();
-    rec.tip_max = rec.tip_rms = none;
-    for (DamperRegime& r : rec.regime) {
-      r.stick_fraction = r.transitions_per_period = none;
-      r.regime = "not reached";
-    }
   }
   rec.overall_regime = rec.regime[0].regime == rec.regime[1].regime
                            ? rec.regime[0].regime
