@@ -9,6 +9,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/modal.hpp"
 #include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/detail/small_solve.hpp"
 #include "stickslip/model/model_options.hpp"
 #include "stickslip/model/point_damper.hpp"
 #include "stickslip/model/point_load.hpp"
@@ -52,17 +53,6 @@ bool law_has_stick_state(const Law& law) {
     return std::decay_t<decltype(l)>::has_stick_state;
   });
 }
-
-/// Order-2 systems of the acceleration solve: the closed-form inverse (Eigen's cofactor formula)
-/// in place of an LU; for order 2 Cramer's rule is forward stable (Higham, Accuracy and Stability
-/// of Numerical Algorithms, 2nd ed., sec. 1.10.1). A singular matrix gives non-finite values,
-/// reported as a non-finite evaluation, as with an LU.
-template <class Scalar>
-struct Inverse2 {
-  Eigen::Matrix<Scalar, 2, 2> inverse = Eigen::Matrix<Scalar, 2, 2>::Identity();
-  void compute(const Eigen::Matrix<Scalar, 2, 2>& m) { inverse = m.inverse(); }
-  Eigen::Matrix<Scalar, 2, 1> solve(const Eigen::Matrix<Scalar, 2, 1>& r) const { return inverse * r; }
-};
 
 inline bool is_slipping(ContactState s) noexcept {
   return s == ContactState::SlipPositive || s == ContactState::SlipNegative;
@@ -1215,9 +1205,10 @@ class FrictionDampedSystem {
   mutable Index factor_unknowns_ = -1;
   mutable bool factor_mode_space_ = false;
   mutable detail::Inverse2<Scalar> lu2_;  // order 2: closed-form inverse
-  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 4, 4>> lu4_;
-  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 6, 6>> lu6_;
-  mutable Eigen::PartialPivLU<Eigen::Matrix<Scalar, 8, 8>> lu8_;
+  // orders 4, 6, 8: checked block elimination, a pivoted LU where the check fails
+  mutable detail::CheckedBlockSolve<Scalar, 4> lu4_;
+  mutable detail::CheckedBlockSolve<Scalar, 6> lu6_;
+  mutable detail::CheckedBlockSolve<Scalar, 8> lu8_;
   mutable Evaluation eval_;
   mutable SolveInfo solve_info_;
   bool cache_valid_ = false;
