@@ -207,6 +207,14 @@ class FrictionDampedSystem {
                               d.contact_coordinate);
       damper_shape_.push_back(s);
       has_stick_.push_back(detail::law_has_stick_state(d.law));
+      // A CoulombLaw's kinetic coefficient does not depend on the speed: read once here, so
+      // that the slip rows need no dispatch on the law.
+      kinetic_constant_.push_back(detail::with_law(d.law, [](const auto& l) -> Scalar {
+        if constexpr (std::is_same_v<std::decay_t<decltype(l)>, CoulombLaw<Scalar>>)
+          return l.kinetic_coefficient(Scalar(0));
+        else
+          return std::numeric_limits<Scalar>::quiet_NaN();
+      }));
       inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
     }
 
@@ -554,8 +562,7 @@ class FrictionDampedSystem {
     c_.setZero(D2);
     u_.setZero(D2);
     unknown_of_.assign(static_cast<std::size_t>(D2), 0);
-    element_.assign(static_cast<std::size_t>(D_), 0);
-    weight_u_.setZero(2, D_);
+    slip_b_.setZero(n_, D_);
     Mn_.setZero(n_, n_);
     lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
@@ -583,6 +590,9 @@ class FrictionDampedSystem {
 
   /// Signed slip coefficient mu_i with f_i = -mu_i N_i for a slipping (or regularised) damper.
   Scalar slip_coefficient(Index i, ContactState s, Scalar V) const {
+    using std::isnan;
+    const Scalar constant = kinetic_constant_[static_cast<std::size_t>(i)];
+    if (!isnan(constant)) return Scalar(detail::slip_sign(s)) * constant;
     return detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [&](const auto& law) -> Scalar {
       using L = std::decay_t<decltype(law)>;
       using std::abs;
@@ -686,10 +696,8 @@ class FrictionDampedSystem {
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       Scalar bq;
-      if (moving && !stuck) {  // b^T q'' = u1 B_0^T q'' + u2 B_3^T q'' (element space)
-        const auto B = element_block(iu, element_[iu]);
-        const auto qdd = modal(e.qdd);
-        bq = weight_u_(0, i) * B.col(0).dot(qdd) + weight_u_(1, i) * B.col(3).dot(qdd);
+      if (moving && !stuck) {  // b from moving_damper
+        bq = modal(slip_b_.col(i)).dot(modal(e.qdd));
       } else {
         bq = C_.col(D + i).dot(e.qdd);
       }
@@ -722,23 +730,24 @@ class FrictionDampedSystem {
     const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
     const auto B = element_block(iu, loc.element);
     const auto& w = loc.weights;
-    element_[iu] = loc.element;
-    weight_u_(0, i) = w.u1;
-    weight_u_(1, i) = w.u2;
     const Scalar sd = dmp.side;  // y_i is measured along side * w
     Vec6 ca, cb;
     ca << Scalar(0), sd * w.w1, sd * w.t1, Scalar(0), sd * w.w2, sd * w.t2;
     cb << w.u1, Scalar(0), Scalar(0), w.u2, Scalar(0), Scalar(0);
     // P = B^T [q q'], accumulated mode by mode from the transposed block (six contiguous values
-    // per mode: packet operations, no horizontal sums).
+    // per mode: packet operations, no horizontal sums). Of B^T q only the w-part (w1, t1, w2, t2:
+    // entries 1, 2, 4, 5) enters; of B^T q' all six.
+    using Vec2 = Eigen::Matrix<Scalar, 2, 1>;
     const auto Bt = nodal_t_[static_cast<std::size_t>(damper_shape_[iu])].template block<6, Modes>(3 * loc.element, 0, 6, n);
     const auto q = x.template segment<Modes>(0, n), qd = x.template segment<Modes>(n, n);
-    Vec6 Pq = Vec6::Zero(), Pqd = Vec6::Zero();
+    Vec2 Pq1 = Vec2::Zero(), Pq4 = Vec2::Zero();
+    Vec6 Pqd = Vec6::Zero();
     for (Index j = 0; j < n; ++j) {
-      Pq.noalias() += q[j] * Bt.col(j);
+      Pq1.noalias() += q[j] * Bt.col(j).template segment<2>(1);
+      Pq4.noalias() += q[j] * Bt.col(j).template segment<2>(4);
       Pqd.noalias() += qd[j] * Bt.col(j);
     }
-    const Scalar wp1 = Pq[1], wp2 = Pq[2], wp4 = Pq[4], wp5 = Pq[5];  // w-part of B^T q
+    const Scalar wp1 = Pq1[0], wp2 = Pq1[1], wp4 = Pq4[0], wp5 = Pq4[1];  // w-part of B^T q
     const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
     const Scalar xi = x[x_offset() + i];
     const Scalar V = x[xd_offset() + i] - (w.u1 * Pqd[0] + w.u2 * Pqd[3]);  // x' - b^T q'
@@ -752,7 +761,7 @@ class FrictionDampedSystem {
       dd = w.du * (Pqd[3] - Pqd[0]) * V;
     }
     e.slope[i] = slope;
-    e.y[i] = ca.dot(Pq);
+    e.y[i] = ca[1] * wp1 + ca[2] * wp2 + ca[4] * wp4 + ca[5] * wp5;
     d_[i] = dd;
     const Scalar mu = slip_coefficient(i, mode[i], V);
     mu_[i] = mu;
@@ -769,31 +778,35 @@ class FrictionDampedSystem {
         diag = Scalar(1);
       }
       const Index j = add_unknown(i, diag, rhs, mu, sc);
-      slip_columns(modal(F_.col(j)), modal(L_.col(j)), B, ca, cb, mu, la, lb);
+      slip_columns(modal(F_.col(j)), modal(L_.col(j)), modal(slip_b_.col(i)), B, ca, cb, mu, la, lb);
     } else {
       e.N[i] = dmp.preload;
       e.f[i] = -mu * dmp.preload;
       block_times<true>(modal(r0_), B, dmp.preload * (ca + mu * cb));
+      block_times<false>(modal(slip_b_.col(i)), B, cb);
     }
   }
 
   /// The two columns of a moving slipping damper's unknown from one pass over its n x 6 block B:
   /// with the shape vectors a = B c_a (four nonzero weights) and b = B c_b (two),
   /// F_j = a + mu b and L_j = la a + lb b - 15 operations per mode instead of the 22 of two
-  /// six-term products, and B read once.
-  template <class DstF, class DstL, class Block6>
-  static void slip_columns(DstF&& dstF, DstL&& dstL, const Block6& B, const Eigen::Matrix<Scalar, 6, 1>& ca,
-                           const Eigen::Matrix<Scalar, 6, 1>& cb, Scalar mu, Scalar la, Scalar lb) {
+  /// six-term products, and B read once; b itself is kept (dstB) for b^T q'' after the solve.
+  template <class DstF, class DstL, class DstB, class Block6>
+  static void slip_columns(DstF&& dstF, DstL&& dstL, DstB&& dstB, const Block6& B,
+                           const Eigen::Matrix<Scalar, 6, 1>& ca, const Eigen::Matrix<Scalar, 6, 1>& cb,
+                           Scalar mu, Scalar la, Scalar lb) {
     const Index n = B.rows(), s = B.outerStride();
     const Scalar* bu1 = B.data();
     Scalar* f = dstF.data();
     Scalar* l = dstL.data();
+    Scalar* bb = dstB.data();
     const Scalar a1 = ca[1], a2 = ca[2], a4 = ca[4], a5 = ca[5], b0 = cb[0], b3 = cb[3];
     for (Index r = 0; r < n; ++r) {
       const Scalar a = a1 * bu1[r + s] + a2 * bu1[r + 2 * s] + a4 * bu1[r + 4 * s] + a5 * bu1[r + 5 * s];
       const Scalar b = b0 * bu1[r] + b3 * bu1[r + 3 * s];
       f[r] = a + mu * b;
       l[r] = la * a + lb * b;
+      bb[r] = b;
     }
   }
 
@@ -1178,8 +1191,10 @@ class FrictionDampedSystem {
   std::vector<Index> shape_members_;
   std::vector<std::pair<Scalar, Scalar>> shape_direction_;  // member (cos, sin)
   std::vector<Index> damper_shape_;
-  std::vector<bool> has_stick_;
-  std::vector<bool> inertial_;  // damper's normal force varies (vertical inertia)
+  // Per damper (char, not the bit-packed vector<bool>, read in every evaluation): the law has a
+  // stick state; the normal force varies (vertical inertia).
+  std::vector<char> has_stick_, inertial_;
+  std::vector<Scalar> kinetic_constant_;  // a CoulombLaw's mu_k, else NaN (slip_coefficient)
   Matrix load_psi_;
 
   // Workspace of the solve (allocated once; the solve allocates nothing).
@@ -1194,9 +1209,8 @@ class FrictionDampedSystem {
   mutable Vector b_n_, res_n_, dz_n_, b_u_, res_u_, dz_u_;  // refinement (refine())
   mutable std::vector<Index> unknown_of_;  // column of z = [N; f] held by each unknown
   mutable Index num_unknowns_ = 0;
-  // Moving slipping dampers (moving_damper): element of the contact and the weights of u1, u2.
-  mutable std::vector<Index> element_;
-  mutable Eigen::Matrix<Scalar, 2, Eigen::Dynamic> weight_u_;
+  // Moving slipping dampers (moving_damper): b = psi_u at the contact, for b^T q'' after the solve.
+  mutable Matrix slip_b_;
   mutable Eigen::PartialPivLU<Matrix> lun_;
   mutable std::vector<Eigen::PartialPivLU<Matrix>> lu_sized_;  // [U]: exact-size LU, U > 4
   // Factorisation reuse: the key of the last factorised matrix and its number of unknowns.
