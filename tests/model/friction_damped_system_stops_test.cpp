@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -60,6 +61,29 @@ TEST(Stops, TransitionInOverflowingStateLeavesTheModeToTheFinitenessCheck) {
   EXPECT_FALSE(action.stop);
   EXPECT_EQ(mode, before);
   EXPECT_TRUE(sys.events().empty());
+}
+
+// A trial stage of a blown-up run can carry a NaN or infinite contact coordinate. The evaluation
+// must report it as non-finite (every output NaN, the derivative NaN), not throw from the shape
+// evaluation at a coordinate off the member, in every contact state.
+TEST(Stops, NonFiniteContactCoordinateGivesANonFiniteEvaluationNotAnException) {
+  const TScene s = make_t_frame();
+  System sys(s.frame, s.basis, paper_dampers(s, 12.0), paper_load(s));
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    for (const ContactState st : {ContactState::Stick, ContactState::SlipPositive}) {
+      System::State x = sys.initial_state();
+      x[sys.contact_offset() + 1] = bad;
+      DamperStates mode(2);
+      mode[0] = ContactState::Stick;
+      mode[1] = st;
+      bool finite = true;
+      EXPECT_NO_THROW(finite = sys.evaluate(mode, 0.0, x).finite);
+      EXPECT_FALSE(finite);
+      EXPECT_TRUE(sys.evaluate(mode, 0.0, x).qdd.array().isNaN().all());
+      System::State dx;
+      EXPECT_NO_THROW(sys.rhs(mode, 0.0, x, dx));
+      EXPECT_TRUE(dx.array().isNaN().all());
+    }
 }
 
 // Dampers 0.1 mm from either end of the platform, with low friction so that they slide: one of

@@ -249,14 +249,19 @@ TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   Scene sc(50, 24, 8, 20.0);
   // Which symptom of the blow-up comes first depends on the round-off of the exploding
   // trajectory: a normal force crossing zero (lift-off) or a contact point passing a member end
-  // can stop the run before anything is NaN. Neither is watched here, so that the run reaches
-  // the non-finite contact coordinate this test is about.
+  // can stop the run before anything is NaN, and with the inertial normal load unwatched the
+  // exploding normal force turns negative, where no stick/slip state is consistent (a Zeno stop:
+  // reached first after a change of the small solves' round-off). So the normal load is
+  // constant and the ends are not watched here, so that the run reaches the non-finite contact
+  // coordinate this test is about.
   sc.model.watch_lift_off = false;
+  sc.model.normal_load = NormalLoad::Constant;
   sc.model.end_policy = EndPolicy::Extrapolate;
   auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4);
   opt.check_stability_limit = false;  // simulate() would refuse this step (test above)
   const Outcome o = sc.run(sc.paper(), 0.01, opt);
   SCOPED_TRACE(describe(o));
+  std::printf("%s\n", describe(o).c_str());
   EXPECT_FALSE(o.threw);
   ASSERT_EQ(o.status, Status::NonFiniteState);
   // Found inside a step ("became non-finite") or, when an event was located first in a finite
