@@ -173,6 +173,7 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
   std::mt19937 rng(seed);
   std::uniform_int_distribution<int> pick(0, 2);
   const Index n = sys.num_modes(), D = sys.num_dampers();
+  int pivoted = 0;
   for (int trial = 0; trial < 24; ++trial) {
     DamperStates mode(D);
     for (Index i = 0; i < D; ++i) mode[i] = kStates[pick(rng)];
@@ -185,6 +186,7 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
     const auto& e = sys.evaluate(mode, t, x);
     if (sys.last_solve().unknowns > 0)
       reached.insert({sys.last_solve().mode_space, sys.last_solve().system_size});
+    pivoted += sys.last_solve().pivoted;
     const VectorXd ref = dense_reference(s, sys, mode, t, x, inertial, true, opt.convective_terms);
     // Same bounds as above: both are direct solves of one well-conditioned linear system.
     const double qscale = ref.head(n).cwiseAbs().maxCoeff();
@@ -200,6 +202,10 @@ void check_many_dampers_against_dense(int modes, int num_dampers, bool inertial,
   for (const Form& f : must_reach)
     EXPECT_EQ(reached.count(f), 1u) << "form not reached: mode_space = " << f.first
                                     << ", order " << f.second << "; reached:" << seen;
+  // These matrices (identity plus rank-one terms of damper mass times mode values, condition
+  // ~1e2) pass the block elimination's backward-error check: the pivoted LU is the exception,
+  // not the path taken (a check that always failed would still give correct numbers above).
+  EXPECT_EQ(pivoted, 0);
 }
 
 TEST(AccelerationSolve, EightDampersOnSixModesFixedModeSpaceFormMatchesDenseReference) {

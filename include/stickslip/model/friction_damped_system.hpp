@@ -140,6 +140,10 @@ class FrictionDampedSystem {
     /// Corrections of iterative refinement from an earlier factorisation of a slightly different
     /// matrix (0: none; the solve was direct, ModelOptions::refine_stale_factorisation).
     int refinements = 0;
+    /// A system of order 4, 6 or 8 was solved with the pivoted LU: its block elimination failed
+    /// the backward-error check (docs/model.md, "acceleration solve"; rare, for matrices whose
+    /// leading block is nearly singular).
+    bool pivoted = false;
   };
 
   /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
@@ -1045,6 +1049,7 @@ class FrictionDampedSystem {
     rU = c_.template head<Cols>(U);
     rU.noalias() -= L.transpose().lazyProduct(r0);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(r);
+    solve_info_.pivoted = lu.pivoting();
     auto u = u_.template head<Cols>(U);
     u = z.template head<Cols>(U);
     auto qdd = modal(eval_.qdd);
@@ -1070,6 +1075,7 @@ class FrictionDampedSystem {
     rhs.template segment<Modes>(0, n_) = modal(r0_);
     rhs.noalias() += F.lazyProduct(c);
     const Eigen::Matrix<Scalar, K, 1> z = lu.solve(rhs);
+    solve_info_.pivoted = lu.pivoting();
     modal(eval_.qdd) = z.template segment<Modes>(0, n_);
     auto u = u_.head(U);
     u = c;

@@ -21,6 +21,7 @@ struct Inverse2 {
   Eigen::Matrix<Scalar, 2, 2> inverse = Eigen::Matrix<Scalar, 2, 2>::Identity();
   void compute(const Eigen::Matrix<Scalar, 2, 2>& m) { inverse = m.inverse(); }
   Eigen::Matrix<Scalar, 2, 1> solve(const Eigen::Matrix<Scalar, 2, 1>& r) const { return inverse * r; }
+  static constexpr bool pivoting() noexcept { return false; }
 };
 
 /// K x K systems (K = 4, 6, 8) by 2 x 2 block elimination with closed-form inverses of the
