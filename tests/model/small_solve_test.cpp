@@ -108,6 +108,32 @@ TEST(CheckedBlockSolve, NearlySingularLeadingBlockFallsBackToPivotedLu) {
   EXPECT_FALSE(solver.pivoting());
 }
 
+// Scalar is a template parameter: long double (64-bit mantissa on x86-64, u = 5.4e-20) and float
+// (u = 6.0e-8) with the same matrices, against the full-pivoting LU in the same type. Bounds:
+// cond (< 1e3, as checked above for these matrices) times the check's 16 K u, i.e. 5e-15 for long
+// double at K = 6 and 4e-3 for float at K = 4 (loose because float's u is). Mainly a check that
+// the class instantiates and is accurate for other Scalar types.
+TEST(CheckedBlockSolve, LongDoubleAndFloat) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const Mat<6> Md = solve_like_matrix<6>(seed);
+    const Eigen::Matrix<long double, 6, 6> Ml = Md.cast<long double>();
+    const Eigen::Matrix<long double, 6, 1> rl = Vec<6>::Random().cast<long double>();
+    stickslip::detail::CheckedBlockSolve<long double, 6> solver_l;
+    solver_l.compute(Ml);
+    const Eigen::Matrix<long double, 6, 1> zl = solver_l.solve(rl), refl = Ml.fullPivLu().solve(rl);
+    EXPECT_LT(static_cast<double>((zl - refl).cwiseAbs().maxCoeff() / refl.cwiseAbs().maxCoeff()), 5e-15);
+    EXPECT_FALSE(solver_l.pivoting());
+
+    const Mat<4> Md4 = solve_like_matrix<4>(seed);
+    const Eigen::Matrix<float, 4, 4> Mf = Md4.cast<float>();
+    const Eigen::Matrix<float, 4, 1> rf = Vec<4>::Random().cast<float>();
+    stickslip::detail::CheckedBlockSolve<float, 4> solver_f;
+    solver_f.compute(Mf);
+    const Eigen::Matrix<float, 4, 1> zf = solver_f.solve(rf), reff = Mf.fullPivLu().solve(rf);
+    EXPECT_LT((zf - reff).cwiseAbs().maxCoeff() / reff.cwiseAbs().maxCoeff(), 4e-3f);
+  }
+}
+
 // An exactly singular M (a zero row) gives non-finite values, as an LU alone does, never a finite
 // wrong answer.
 TEST(CheckedBlockSolve, SingularMatrixGivesNonFiniteValues) {
