@@ -254,8 +254,7 @@ TEST(FixedStep, FiftyModesWithThePaperStepEndsWithAStatusNotAnException) {
   // reached first after a change of the small solves' round-off). So the normal load is
   // constant and the ends are not watched here, so that the run reaches the non-finite contact
   // coordinate this test is about.
-  sc.model.watch_lift_off = false;
-  sc.model.normal_load = NormalLoad::Constant;
+  sc.model.normal_load = NormalLoad::Constant;  // (so no lift-off to watch either)
   sc.model.end_policy = EndPolicy::Extrapolate;
   auto opt = options_for(Integrator::RungeKutta4, 1e-8, 1e-12, 1e-4);
   opt.check_stability_limit = false;  // simulate() would refuse this step (test above)

@@ -787,7 +787,7 @@ class FrictionDampedSystem {
       e.N[i] = dmp.preload;
       e.f[i] = -mu * dmp.preload;
       block_times<true>(modal(r0_), B, dmp.preload * (ca + mu * cb));
-      block_times<false>(modal(slip_b_.col(i)), B, cb);
+      modal(slip_b_.col(i)).noalias() = w.u1 * B.col(0) + w.u2 * B.col(3);  // b, for b^T q''
     }
   }
 
