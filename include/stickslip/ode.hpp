@@ -7,6 +7,7 @@
 #include "stickslip/ode/event_locator.hpp"
 #include "stickslip/ode/hybrid_stepper.hpp"
 #include "stickslip/ode/hybrid_system.hpp"
+#include "stickslip/ode/linear_part.hpp"
 #include "stickslip/ode/rosenbrock23.hpp"
 #include "stickslip/ode/runge_kutta4.hpp"
 #include "stickslip/ode/stepper_options.hpp"
