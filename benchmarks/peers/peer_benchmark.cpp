@@ -237,8 +237,10 @@ Row measure(const Implementation& impl, const ChainParameters& p, const Referenc
       break;
     }
     if (cost > kSweepBudget) {
-      row.note = "sweep stopped at rtol=atol=" + std::to_string(grid[i]) + " (run cost " +
-                 std::to_string(cost) + " s)";
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "sweep stopped at rtol=atol=%.1e (run cost %.2f s)", grid[i],
+                    cost);
+      row.note = buf;
       break;
     }
   }
