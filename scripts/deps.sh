@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Installs the Debian packages stickslip needs, only those that are missing.
-# Usage: scripts/deps.sh [test|demo|all]   (all is the default)
+# Usage: scripts/deps.sh [test|demo|bench|all]   (all is the default)
+# bench: also Boost (odeint, headers) and SUNDIALS (CVODE) for the peer benchmark (scripts/peers.sh).
 set -euo pipefail
 what=${1:-all}
 pkgs=(cmake g++ make libeigen3-dev libspectra-dev googletest libgtest-dev libbenchmark-dev)
 case "$what" in
   demo|all) pkgs+=(python3-matplotlib) ;;
+  bench) pkgs+=(libboost-dev libsundials-dev) ;;
 esac
 missing=()
 for p in "${pkgs[@]}"; do
