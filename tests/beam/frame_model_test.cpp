@@ -187,7 +187,7 @@ TEST(FrameModel, RejectsBadInput) {
   EXPECT_INVALID_ARGUMENT(m.add_member(a, 7, s, 2), "node_b = 7 does not exist (model has 3 nodes)");
   EXPECT_INVALID_ARGUMENT(m.add_member(-1, b, s, 2), "node_a = -1 does not exist");
   EXPECT_INVALID_ARGUMENT(m.add_member(a, a, s, 2), "zero-length member");
-  EXPECT_INVALID_ARGUMENT(m.add_member(a, b, s, 0), "elements must be >= 1");
+  EXPECT_INVALID_ARGUMENT(m.add_member(a, b, s, 0), "elements must be in [1, max_elements_per_member");
   EXPECT_INVALID_ARGUMENT(m.add_member(a, b, (Section{2e11, 0.0, 1e-4, 1e-9}), 2), "section.rho");
   EXPECT_INVALID_ARGUMENT(m.add_member(a, b, (Section{2e11, 7800.0, 1e-4, -1.0}), 2), "section.I");
   EXPECT_INVALID_ARGUMENT(m.add_member(a, b, s, std::vector<double>{0.0, 0.5, 0.4, 1.0}), "strictly ascending");

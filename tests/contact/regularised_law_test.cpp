@@ -58,5 +58,31 @@ TEST(RegularisedLaw, RejectsBadParametersNamingThem) {
   expect_invalid_argument([&] { Law(0.3, inf); }, {"RegularisedLaw", "v_eps", "inf"});
 }
 
+// Issue #18 item 11: RegularisedLaw(0.3, 1e-310).coefficient_derivative(0.01) was inf * 0 = NaN
+// (mu / v_eps overflowed before the factor 1 - tanh^2 = 0). A v_eps whose slope mu / v_eps
+// overflows is now rejected by name with its limit, and at the smallest admitted v_eps the
+// derivative is finite everywhere: the closed form (mu / v_eps) sech^2(v / v_eps).
+TEST(RegularisedLaw, TinyVEpsIsRejectedOrGivesAFiniteDerivative) {
+  expect_invalid_argument([] { Law(0.3, 1e-310); }, {"RegularisedLaw", "v_eps", "slope"});
+  expect_invalid_argument([] { Law(1e10, 1e-300); }, {"RegularisedLaw", "v_eps", "1e-300"});
+  const double v_min = Law::min_v_eps(0.3);
+  EXPECT_EQ(v_min, std::numeric_limits<double>::min());  // 0.3 / DBL_MAX is below it
+  EXPECT_EQ(Law::min_v_eps(1e10), 1e10 / std::numeric_limits<double>::max());
+  for (auto shape : {RegularisedShape::Tanh, RegularisedShape::LinearSaturated}) {
+    const Law law(0.3, v_min, shape);
+    // Far beyond v_eps the law is saturated: the derivative is exactly 0 (sech^2(1e305) = 0).
+    EXPECT_EQ(law.coefficient_derivative(0.01), 0.0);
+    EXPECT_EQ(law.coefficient_derivative(-1e300), 0.0);
+    // At v = 0 it is the peak slope mu / v_eps, finite by the limit; computed as mu (1 - 0) /
+    // v_eps: one rounding, hence the 1-ulp tolerance.
+    EXPECT_NEAR(law.coefficient_derivative(0.0), 0.3 / v_min, 0.3 / v_min * 2.3e-16);
+    EXPECT_TRUE(std::isfinite(law.coefficient_derivative(v_min)));
+  }
+  // Tanh at v = v_eps: (mu / v_eps) sech^2(1), a few roundings of tanh and the product (8 ulp).
+  const Law law(0.3, 1e-300);
+  const double sech = 1.0 / std::cosh(1.0);
+  EXPECT_NEAR(law.coefficient_derivative(1e-300), 0.3e300 * sech * sech, 0.3e300 * sech * sech * 8 * 2.2e-16);
+}
+
 }  // namespace
 }  // namespace contact_regularised_law_test

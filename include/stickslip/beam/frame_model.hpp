@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -55,6 +56,12 @@ class FrameModel {
   /// Relative tolerance (of the model's bounding-box diagonal) below which two user nodes are
   /// coincident, and of the member length for the end stations of explicit meshes.
   static constexpr double coincidence_tolerance = 1e-9;
+  /// Most nodes a model may hold (user and interior nodes): 3 * max_nodes DOFs keep the sparse
+  /// matrices' int indices and their ~36 nonzeros per element far from overflow, and a model at
+  /// the limit assembles in a few GB.
+  static constexpr Index max_nodes = Index(1) << 22;
+  /// Most elements one member may be divided into (add_member's `elements`, stations.size() - 1).
+  static constexpr Index max_elements_per_member = Index(1) << 20;
 
   FrameModel() = default;
 
@@ -72,9 +79,11 @@ class FrameModel {
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
-    const Scalar tol = Scalar(coincidence_tolerance) * (hi - lo).norm();
+    // stableNorm: coordinates beyond ~1e154 m would overflow a plain norm to inf (every node then
+    // "coincides"), those below ~1e-154 m underflow it.
+    const Scalar tol = Scalar(coincidence_tolerance) * (hi - lo).stableNorm();
     for (std::size_t n = 0; n < positions_.size(); ++n) {
-      if ((positions_[n] - p).norm() <= tol)
+      if ((positions_[n] - p).stableNorm() <= tol)
         throw std::invalid_argument(std::string(where) + ": node at (" + detail::format_value(x) +
                                     ", " + detail::format_value(y) + ") coincides with node " +
                                     std::to_string(n) + " (relative tolerance " +
@@ -86,11 +95,11 @@ class FrameModel {
 
   /// Add a member from node_a to node_b discretised into `elements` equal elements (creates
   /// elements - 1 interior nodes); returns the member id.
-  /// \throws std::invalid_argument for a missing node, node_a == node_b, elements < 1 or an
-  ///         invalid section
+  /// \throws std::invalid_argument for a missing node, node_a == node_b, elements outside
+  ///         [1, max_elements_per_member], more than max_nodes nodes in all, or an invalid section
   Index add_member(Index node_a, Index node_b, const Section& section, Index elements) {
     static const char* where = "FrameModel::add_member";
-    if (elements < 1) detail::throw_invalid(where, "elements must be >= 1", elements);
+    check_element_count(where, "elements", elements);
     const Scalar length = checked_length(where, node_a, node_b, section);
     std::vector<Scalar> stations(static_cast<std::size_t>(elements) + 1);
     for (Index e = 0; e <= elements; ++e)
@@ -103,11 +112,13 @@ class FrameModel {
   /// coordinates [m] of the node chain, stations.front() = 0 and stations.back() = member
   /// length (each within coincidence_tolerance * length; they are then set exactly).
   /// \throws std::invalid_argument for a missing node, node_a == node_b, fewer than two stations,
-  ///         non-ascending or non-finite stations, wrong end stations, or an invalid section
+  ///         non-ascending or non-finite stations, wrong end stations, more than
+  ///         max_elements_per_member elements or max_nodes nodes, or an invalid section
   Index add_member(Index node_a, Index node_b, const Section& section, std::vector<Scalar> stations) {
     static const char* where = "FrameModel::add_member";
     const Scalar length = checked_length(where, node_a, node_b, section);
     if (stations.size() < 2) detail::throw_invalid(where, "stations.size() must be >= 2", stations.size());
+    check_element_count(where, "stations.size() - 1", static_cast<Index>(stations.size()) - 1);
     using std::abs;
     const Scalar tol = Scalar(coincidence_tolerance) * length;
     if (!(abs(stations.front()) <= tol))
@@ -145,34 +156,31 @@ class FrameModel {
   }
 
   /// Add a point mass m [kg] on the X and Y DOFs of a node (accumulates).
-  /// \throws std::invalid_argument for a missing node or m non-finite or < 0
+  /// \throws std::invalid_argument for a missing node, m non-finite or < 0, or a sum that
+  ///         overflows
   void add_point_mass(Index node, Scalar m) {
     static const char* where = "FrameModel::add_point_mass";
     check_node(where, "node", node);
     detail::require_non_negative(where, "m", m);
-    nodal_mass_[idx(global_dof(node, Dof::X))] += m;
-    nodal_mass_[idx(global_dof(node, Dof::Y))] += m;
-    touch();
+    accumulate(where, "m", node, nodal_mass_, {Dof::X, Dof::Y}, m);
   }
 
   /// Add a rotary inertia J [kg m^2] on the Rz DOF of a node (accumulates).
-  /// \throws std::invalid_argument for a missing node or J non-finite or < 0
+  /// \throws std::invalid_argument for a missing node, J non-finite or < 0, or a sum that overflows
   void add_rotary_inertia(Index node, Scalar J) {
     static const char* where = "FrameModel::add_rotary_inertia";
     check_node(where, "node", node);
     detail::require_non_negative(where, "J", J);
-    nodal_mass_[idx(global_dof(node, Dof::Rz))] += J;
-    touch();
+    accumulate(where, "J", node, nodal_mass_, {Dof::Rz}, J);
   }
 
   /// Add a grounded spring k [N/m, or N m/rad for Rz] on one DOF of a node (accumulates).
-  /// \throws std::invalid_argument for a missing node or k non-finite or < 0
+  /// \throws std::invalid_argument for a missing node, k non-finite or < 0, or a sum that overflows
   void add_spring(Index node, Dof dof, Scalar k) {
     static const char* where = "FrameModel::add_spring";
     check_node(where, "node", node);
     detail::require_non_negative(where, "k", k);
-    nodal_spring_[idx(global_dof(node, dof))] += k;
-    touch();
+    accumulate(where, "k", node, nodal_spring_, {dof}, k);
   }
 
   /// Member `id`. \throws std::invalid_argument when out of range
@@ -207,8 +215,10 @@ class FrameModel {
   /// Assemble K and M over the free DOFs (constrained DOFs eliminated), element matrices from
   /// FrameElement::global_stiffness / global_mass(type), plus point masses, rotary inertias and
   /// springs on the diagonal. Cost O(num_elements()).
-  /// \throws std::invalid_argument when there are no free DOFs, or a free DOF has no mass (a
-  ///         node not attached to any member and carrying no point mass / rotary inertia)
+  /// \throws std::invalid_argument when there are no free DOFs, an element matrix overflows (the
+  ///         message names the member, the element and EA/L, EI/L^3, rho A L), a sum of entries
+  ///         of K or M overflows (names the DOF), or a free DOF has no mass (a node not attached
+  ///         to any member and carrying no point mass / rotary inertia)
   AssembledFrame<Scalar> assemble(MassType type = MassType::Consistent) const {
     static const char* where = "FrameModel::assemble";
     AssembledFrame<Scalar> out;
@@ -237,6 +247,8 @@ class FrameModel {
         const FrameElement<Scalar> element = member.element(e);
         const auto k = element.global_stiffness();
         const auto m = element.global_mass(type);
+        if (!detail::all_finite(k) || !detail::all_finite(m))
+          throw_element_overflow(where, static_cast<Index>(&member - members_.data()), e, element);
         for (Index c = 0; c < 6; ++c) {
           const Index fc = map[idx(c)];
           if (fc < 0) continue;
@@ -262,6 +274,8 @@ class FrameModel {
     out.mass.setFromTriplets(m_triplets.begin(), m_triplets.end());
     out.stiffness.makeCompressed();
     out.mass.makeCompressed();
+    require_finite_sum(where, "K", out.stiffness, out.dofs);
+    require_finite_sum(where, "M", out.mass, out.dofs);
 
     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> diag = out.mass.diagonal();
     for (Index i = 0; i < n; ++i) {
@@ -332,7 +346,70 @@ class FrameModel {
 
   void touch() noexcept { id_ = detail::next_model_id(); }
 
+  // values[dof of node] += v for each dof, all or nothing: a sum that overflows throws, naming it.
+  void accumulate(const char* where, const char* name, Index node, std::vector<Scalar>& values,
+                  std::initializer_list<Dof> dofs, Scalar v) {
+    for (Dof d : dofs) {
+      const Scalar sum = values[idx(global_dof(node, d))] + v;
+      if (!detail::is_finite(sum))
+        detail::throw_invalid(where, std::string(name) + ": the sum on DOF " + to_string(d) + " of node " +
+                                         std::to_string(node) + " overflows (" +
+                                         detail::format_value(values[idx(global_dof(node, d))]) + " + " +
+                                         detail::format_value(v) + ")",
+                              sum);
+    }
+    for (Dof d : dofs) values[idx(global_dof(node, d))] += v;
+    touch();
+  }
+
+  void check_element_count(const char* where, const char* name, Index elements) const {
+    if (elements < 1 || elements > max_elements_per_member)
+      detail::throw_invalid(where, std::string(name) + " must be in [1, max_elements_per_member = " +
+                                       std::to_string(max_elements_per_member) + "]",
+                            elements);
+    if (elements - 1 > max_nodes - num_nodes())
+      detail::throw_invalid(where, std::string(name) + " would create " + std::to_string(elements - 1) +
+                                       " interior nodes beside the model's " + std::to_string(num_nodes()) +
+                                       ", above max_nodes = " + std::to_string(max_nodes),
+                            elements);
+  }
+
+  [[noreturn]] static void throw_element_overflow(const char* where, Index member, Index e,
+                                                  const FrameElement<Scalar>& element) {
+    const Scalar L = element.length();
+    const Section& s = element.section();
+    throw std::invalid_argument(
+        std::string(where) + ": member " + std::to_string(member) + ", element " + std::to_string(e) +
+        " (length " + detail::format_value(L) + " m): its stiffness or mass matrix is not finite "
+        "(EA/L = " + detail::format_value(s.axial_rigidity() / L) +
+        ", EI/L^3 = " + detail::format_value(s.bending_rigidity() / (L * L * L)) +
+        ", rho A L = " + detail::format_value(s.mass_per_length() * L) +
+        ", rho A L^3 = " + detail::format_value(s.mass_per_length() * L * L * L) +
+        "): the element is too short or too long for its section");
+  }
+
+  // The assembled sums of finite element entries may still overflow (e.g. many heavy point
+  // masses and elements at one DOF): name the first DOF whose row holds a non-finite entry.
+  static void require_finite_sum(const char* where, const char* name,
+                                 const typename AssembledFrame<Scalar>::SparseMatrix& a, const DofMap& dofs) {
+    if (detail::all_finite(Eigen::Map<const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>>(a.valuePtr(), a.nonZeros())))
+      return;
+    for (Index c = 0; c < a.outerSize(); ++c)
+      for (typename AssembledFrame<Scalar>::SparseMatrix::InnerIterator it(a, c); it; ++it)
+        if (!detail::is_finite(it.value())) {
+          const auto nd = dofs.node_dof(it.row());
+          throw std::invalid_argument(std::string(where) + ": the assembled " + name + " has a non-finite entry (" +
+                                      detail::format_value(it.value()) + ") in the row of DOF " +
+                                      to_string(nd.second) + " of node " + std::to_string(nd.first) +
+                                      ": the sum of its element and nodal terms overflows");
+        }
+  }
+
   Index push_node(const Vector2& p) {
+    if (num_nodes() >= max_nodes)
+      detail::throw_invalid("FrameModel::add_node", "the model already holds max_nodes = " +
+                                                        std::to_string(max_nodes) + " nodes; num_nodes()",
+                            num_nodes());
     positions_.push_back(p);
     for (int d = 0; d < 3; ++d) {
       constrained_.push_back(false);
@@ -356,7 +433,10 @@ class FrameModel {
     if (node_a == node_b)
       detail::throw_invalid(where, "node_b must differ from node_a (zero-length member)", node_b);
     section.validate(where);
-    const Scalar length = (positions_[idx(node_b)] - positions_[idx(node_a)]).norm();
+    // stableNorm: a plain norm squares the components, which for a member shorter than ~1e-154 m
+    // lose precision (subnormal) or underflow, and the direction cosines no longer form a unit
+    // vector.
+    const Scalar length = (positions_[idx(node_b)] - positions_[idx(node_a)]).stableNorm();
     detail::require_positive(where, "member length", length);
     return length;
   }

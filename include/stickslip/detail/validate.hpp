@@ -41,6 +41,13 @@ bool all_finite(const Eigen::DenseBase<Derived>& v) {
   return isfinite((v.derived().array() * typename Derived::Scalar(0)).sum());
 }
 
+/// True for a finite scalar (std::isfinite, found by argument-dependent lookup for custom scalars).
+template <class Scalar>
+bool is_finite(Scalar value) {
+  using std::isfinite;
+  return isfinite(value);
+}
+
 /// Require a finite value.
 template <class Scalar>
 void require_finite(const std::string& where, const char* name, Scalar value) {

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -71,7 +72,8 @@ inline int slip_sign(ContactState s) noexcept {
 /// Discrete mode: DamperStates, one ContactState per damper.
 ///
 /// Equations (paper eqs 11-25 generalised; m_i, k_i effective = share x mass/stiffness):
-///   q'' + 2 zeta omega q' + omega^2 q = sum_l F_l(t) psi_l + sum_i (N_i a_i - f_i b_i)     (25)
+///   q'' + c q' + omega^2 q = sum_l F_l(t) psi_l + sum_i (N_i a_i - f_i b_i)               (25)
+/// (c_j = ModalBasis::damping_coefficients(): 2 zeta_j omega_j, or alpha + beta omega_j^2)
 ///   m_i x_i'' + k_i x_i = f_i                                                            (11)
 ///   N_i = N0_i - m_i y_i'',  y_i'' = a_i^T q'' + 2 q'^T a_i' V_i + q^T a_i'' V_i^2 + s_i V_i' (19, 23)
 ///   V_i = X_i' = x_i' - q'^T b_i  (sliding velocity of the damper relative to the member)
@@ -174,7 +176,9 @@ class FrictionDampedSystem {
     if (!options_.moving_contact) options_.convective_terms = false;
 
     omega2_ = basis.omega().array().square().matrix();
-    two_zeta_omega_ = (Scalar(2) * basis.damping_ratios().array() * basis.omega().array()).matrix();
+    // c_j of the basis (2 zeta_j omega_j, or alpha + beta omega_j^2 with Rayleigh damping, which
+    // keeps alpha on a rigid-body mode): not recomputed from zeta, which is 0 for a rigid mode.
+    modal_damping_ = basis.damping_coefficients();
 
     // One MemberShapes per member touched by a damper or a load.
     auto shapes_for = [&](Index member) -> Index {
@@ -259,8 +263,8 @@ class FrictionDampedSystem {
   const Vector& omega_squared() const noexcept { return omega2_; }
   /// Eigenvalues of the linear parts of the equations that an explicit fixed step must resolve
   /// (upper half-plane of each conjugate pair): every retained mode of eq 25,
-  /// lambda = omega (-zeta + i sqrt(1 - zeta^2)) (two real rates omega (-zeta +- sqrt(zeta^2 - 1))
-  /// when zeta >= 1), and every damper's free oscillator x'' = -k x / m of eq 11 while it slips,
+  /// lambda = omega (-zeta + i sqrt(1 - zeta^2)) with zeta = c / (2 omega) (two real rates
+  /// omega (-zeta +- sqrt(zeta^2 - 1)) when zeta >= 1; -c for a damped rigid-body mode), and every damper's free oscillator x'' = -k x / m of eq 11 while it slips,
   /// lambda = i sqrt(k / m). Stuck dampers need no rates of their own: in any stick pattern and
   /// at any contact point the structure's squared frequencies are Rayleigh quotients
   /// (q^T Omega^2 q + sum k (b^T q)^2) / (q^T q + sum m (b^T q)^2 + ...), mediants of the omega_j^2
@@ -271,8 +275,12 @@ class FrictionDampedSystem {
     rates.reserve(static_cast<std::size_t>(n_ + D_));
     using std::sqrt;
     for (Index j = 0; j < n_; ++j) {
-      const Scalar w = sqrt(omega2_[j]), zeta = two_zeta_omega_[j] / (Scalar(2) * w);
-      if (!(w > 0)) continue;  // a rigid-body mode has no rate
+      const Scalar w = sqrt(omega2_[j]);
+      if (!(w > 0)) {  // rigid-body mode q'' + c q' = 0: rates 0 and -c
+        if (modal_damping_[j] > 0) rates.emplace_back(-modal_damping_[j], Scalar(0));
+        continue;
+      }
+      const Scalar zeta = modal_damping_[j] / (Scalar(2) * w);
       if (zeta < 1) {
         rates.emplace_back(-zeta * w, w * sqrt(Scalar(1) - zeta * zeta));
       } else {
@@ -319,6 +327,20 @@ class FrictionDampedSystem {
     return m;
   }
 
+  /// Checks that x has state_size() entries and mode has num_dampers() states (two comparisons;
+  /// done by evaluate() before every solve, so by rhs, guards, make_consistent and the outputs,
+  /// and by simulate() before the first step).
+  /// \throws std::invalid_argument naming `where`, the expected and the given sizes
+  void validate_state(const Mode& mode, const State& x, const char* where = "FrictionDampedSystem") const {
+    if (x.size() != state_size())
+      throw std::invalid_argument(std::string(where) + ": state x has size " + std::to_string(x.size()) +
+                                  ", expected state_size() = " + std::to_string(state_size()));
+    if (mode.size() != D_)
+      throw std::invalid_argument(std::string(where) + ": mode (DamperStates) has " +
+                                  std::to_string(mode.size()) + " states, expected num_dampers() = " +
+                                  std::to_string(D_));
+  }
+
   // ---- hybrid-system concept ------------------------------------------------------------------
   /// dx/dt in mode `mode` (the coupled solve of docs/model.md, then the state derivatives).
   void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt) {
@@ -336,7 +358,7 @@ class FrictionDampedSystem {
         p_ext += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l).dot(qd);
       const Index o = energy_offset();
       dxdt[o] = p_ext;
-      dxdt[o + 1] = qd.dot(modal(two_zeta_omega_).cwiseProduct(qd));
+      dxdt[o + 1] = qd.dot(modal(modal_damping_).cwiseProduct(qd));
       dxdt[o + 2] = -e.f.dot(e.V);
       dxdt[o + 3] = options_.moving_contact ? -(e.N.array() * e.slope.array() * e.V.array()).sum() : Scalar(0);
     }
@@ -415,7 +437,9 @@ class FrictionDampedSystem {
 
   /// A consistent initial mode for state x at t, starting from the requested states; it also
   /// reports lift-off at t0 (N <= 0) through `stop_reason()`. Returns false when none exists.
+  /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
   bool make_consistent(Mode& mode, Scalar t, State& x) {
+    validate_state(mode, x, "FrictionDampedSystem::make_consistent");
     std::vector<Index>& involved = involved_;
     involved.clear();
     for (Index i = 0; i < D_; ++i)
@@ -438,9 +462,11 @@ class FrictionDampedSystem {
 
   // ---- outputs --------------------------------------------------------------------------------
   /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call.
+  /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
   const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x) {
     if (!(cache_valid_ && t == cache_t_ && mode == cache_mode_ && x.size() == cache_x_.size() &&
           x == cache_x_)) {
+      validate_state(mode, x, "FrictionDampedSystem::evaluate");
       solve(mode, t, x);
       cache_valid_ = true;
       cache_t_ = t;
@@ -619,7 +645,7 @@ class FrictionDampedSystem {
     const auto qd = x.template segment<Modes>(n, n);
     Evaluation& e = eval_;
 
-    modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(two_zeta_omega_).cwiseProduct(qd);
+    modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(modal_damping_).cwiseProduct(qd);
     for (Index l = 0; l < load_psi_.cols(); ++l)
       r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
 
@@ -1191,7 +1217,7 @@ class FrictionDampedSystem {
   std::vector<Load> loads_;
   ModelOptions<Scalar> options_;
   Index n_ = 0, D_ = 0;
-  Vector omega2_, two_zeta_omega_;
+  Vector omega2_, modal_damping_;
   std::vector<Shapes> shapes_;
   std::vector<Matrix> nodal_t_;  // per shape: the member's nodal values transposed, 3 (nodes) x n
   std::vector<Index> shape_members_;

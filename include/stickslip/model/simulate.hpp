@@ -53,6 +53,16 @@ struct RunOptions {
 
 namespace detail {
 
+/// Detects an optional system hook validate_state(mode, x, where) that throws
+/// std::invalid_argument on a state or mode of the wrong size (FrictionDampedSystem).
+template <class System, class = void>
+struct has_validate_state : std::false_type {};
+template <class System>
+struct has_validate_state<System, std::void_t<decltype(std::declval<const System&>().validate_state(
+                                      std::declval<const typename System::Mode&>(),
+                                      std::declval<const typename System::State&>(), "simulate"))>>
+    : std::true_type {};
+
 template <class System, class = void>
 struct has_linear_rates : std::false_type {};
 template <class System>
@@ -103,12 +113,14 @@ void require_rk4_stable(const Rates& rates, Scalar h) {
 /// Integrates `system` from (t0, x0) in `mode` to t_end with the chosen integrator.
 /// With RungeKutta4 and a system that reports linear_rates() (FrictionDampedSystem), a fixed step
 /// above the stability limit of one of those rates throws std::invalid_argument before any step
-/// (see RunOptions::check_stability_limit).
+/// (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
+/// (FrictionDampedSystem) checks the sizes of x0 and mode first (std::invalid_argument).
 template <class System, class Observer>
 HybridResult<typename System::Scalar, typename System::State, typename System::Mode> simulate(
     System& system, typename System::Mode mode, typename System::Scalar t0,
     const typename System::State& x0, typename System::Scalar t_end,
     const RunOptions<typename System::Scalar>& options, Observer& observer) {
+  if constexpr (detail::has_validate_state<System>::value) system.validate_state(mode, x0, "simulate");
   switch (options.integrator) {
     case Integrator::RungeKutta4: {
       if constexpr (detail::has_linear_rates<System>::value) {

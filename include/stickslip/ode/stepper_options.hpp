@@ -67,8 +67,13 @@ struct StepperOptions {
     if (max_steps <= 0) detail::throw_invalid(where, "options.max_steps must be > 0", max_steps);
     require_positive(where, "options.event_time_tolerance", event_time_tolerance);
     require_non_negative(where, "options.guard_zero_tolerance", guard_zero_tolerance);
-    if (zeno_max_events <= 0)
-      detail::throw_invalid(where, "options.zeno_max_events must be > 0", zeno_max_events);
+    // The event-rate cap keeps the times of the last zeno_max_events events (one Scalar each):
+    // 1e6 of them are 8 MB, while 1e9 would allocate 8 GB before the first step.
+    constexpr long zeno_events_limit = 1'000'000;
+    if (zeno_max_events <= 0 || zeno_max_events > zeno_events_limit)
+      detail::throw_invalid(where, "options.zeno_max_events must be in [1, " +
+                                       std::to_string(zeno_events_limit) + "] (limit of the event-time ring buffer)",
+                            zeno_max_events);
     require_non_negative(where, "options.zeno_window", zeno_window);
     if (zeno_max_immediate_events <= 0)
       detail::throw_invalid(where, "options.zeno_max_immediate_events must be > 0",
