@@ -77,19 +77,26 @@ RawModes<Scalar> dense_modes(const AssembledFrame<Scalar>& frame, Eigen::Index n
   const Matrix M(frame.mass);
   const Eigen::Index n = K.rows();
   RawModes<Scalar> out;
-  const DensePencil<Scalar> standard(K, M, true);
+  // Eigenvalues first; the standard form's vectors only when some mode is taken from it.
+  const DensePencil<Scalar> standard(K, M, false);
   if (!standard.ok) {
     out.failure = "the Cholesky factorisation of M failed (M is not positive definite)";
     return out;
   }
+  const auto take_standard = [&] {
+    const DensePencil<Scalar> full(K, M, true);
+    out.lambda = full.mu.head(nev);
+    out.phi = full.x.leftCols(nev);
+  };
   const Scalar lambda_max = standard.mu.cwiseAbs().maxCoeff();
-  out.lambda = standard.mu.head(nev);
-  out.phi = standard.x.leftCols(nev);
   out.err = Vector::Constant(nev, eps * lambda_max);
   const Eigen::Index rigid = frame.num_rigid_body_modes >= 0
                                  ? frame.num_rigid_body_modes
                                  : (standard.mu.array() <= rigid_limit).template cast<Eigen::Index>().sum();
-  if (rigid >= nev || standard.mu(rigid) * kDenseAccuracy >= eps * lambda_max) return out;
+  if (rigid >= nev || standard.mu(rigid) * kDenseAccuracy >= eps * lambda_max) {
+    take_standard();
+    return out;
+  }
 
   // Shift s: without rigid-body modes K is positive definite and s = eps^2 lambda_scale only
   // guards the Cholesky. With rigid-body modes s ~ the first elastic eigenvalue, so that their
@@ -112,19 +119,29 @@ RawModes<Scalar> dense_modes(const AssembledFrame<Scalar>& frame, Eigen::Index n
   DensePencil<Scalar> inverse = solve(s, true);
   for (Scalar rel = Scalar(100) * eps; !inverse.ok && rel < Scalar(1e-2); rel *= Scalar(1000))
     inverse = solve(s = std::max(s, rel * lambda_scale), true);
-  if (!inverse.ok) return out;  // keep the standard result; the checks judge it
+  if (!inverse.ok) {
+    take_standard();  // the checks judge it
+    return out;
+  }
   report.shift = -s;
   const Scalar mu_max = inverse.mu(n - 1);
   Eigen::Index taken = 0;
+  Vector lambda_inverse(nev), err_inverse(nev);
   for (; taken < nev; ++taken) {
-    const Scalar mu = inverse.mu(n - 1 - taken);
-    const Scalar lambda = Scalar(1) / mu - s;
-    const Scalar err = eps * mu_max * (lambda + s) * (lambda + s);
-    if (err >= out.err(taken)) break;
-    out.lambda(taken) = lambda;
-    out.phi.col(taken) = inverse.x.col(n - 1 - taken);
-    out.err(taken) = err;
+    const Scalar lambda = Scalar(1) / inverse.mu(n - 1 - taken) - s;
+    err_inverse(taken) = eps * mu_max * (lambda + s) * (lambda + s);
+    lambda_inverse(taken) = lambda;
+    if (err_inverse(taken) >= out.err(taken)) break;
   }
+  if (taken < nev) {
+    take_standard();
+  } else {
+    out.lambda.resize(nev);
+    out.phi.resize(n, nev);
+  }
+  out.lambda.head(taken) = lambda_inverse.head(taken);
+  out.err.head(taken) = err_inverse.head(taken);
+  out.phi.leftCols(taken) = inverse.x.rightCols(taken).rowwise().reverse();
   report.inverse_modes = taken;
   // A rigid-body eigenvalue is zero only up to the perturbation of K, ~eps * lambda_max in
   // either form (the elastic modes' structured accuracy does not extend to an exact null space).

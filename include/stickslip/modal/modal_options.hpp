@@ -15,7 +15,7 @@ namespace stickslip {
 /// Eigensolver used by compute_modes.
 enum class ModalSolver : std::uint8_t {
   Auto,   ///< Dense when num_free <= dense_limit (or num_modes is a large share of num_free), else Sparse
-  Dense,  ///< Eigen::GeneralizedSelfAdjointEigenSolver on dense K, M (all modes, O(n^3))
+  Dense,  ///< Cholesky reduction of dense K, M (and its inverse form for ill-conditioned K), O(n^3)
   Sparse  ///< Spectra shift-and-invert Lanczos with a sparse LDL^T of K - sigma M
 };
 
