@@ -191,7 +191,7 @@ TEST(ComputeModesChecks, FailedSparseSolveFallsBackToDenseAndReportsWhy) {
 TEST(ComputeModesChecks, RealisticFramesPassTheChecksWithoutFallback) {
   // The paper's T-frame (Auto: dense) and a 20-element-per-member L frame of 3 members (sparse
   // forced): no fallback, backward errors at round-off (dense: ~eps; sparse: ~ the Lanczos
-  // tolerance 1e-10), mass-orthonormal to 1e-8 before the final normalisation.
+  // tolerance 1e-10), mass-orthonormal to 1e-8.
   FrameModel<double> t = blade_platform_frame().model;
   FrameModel<double> l;
   const auto a = l.add_node(0.0, 0.0), b = l.add_node(0.0, 1.0), c = l.add_node(1.0, 1.0), d = l.add_node(1.0, 0.0);

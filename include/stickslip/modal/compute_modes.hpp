@@ -18,8 +18,8 @@
 #include <Spectra/SymGEigsShiftSolver.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -42,7 +42,7 @@ struct ModalSolveReport {
   Eigen::Index deflated = 0;               ///< rigid-body modes deflated before Lanczos (sparse)
   Eigen::Index inverse_modes = 0;          ///< modes taken from the dense inverse form M phi = mu (K - sigma M) phi
   Scalar backward_error = Scalar(0);       ///< max relative backward error of the returned pairs
-  Scalar orthonormality_error = Scalar(0); ///< max |Phi^T M Phi - I| before the final normalisation
+  Scalar orthonormality_error = Scalar(0); ///< max |Phi^T M Phi - I| of the mass-normalised modes
   /// Why the sparse solver's result was rejected and the dense solver used instead (empty: no
   /// fallback).
   std::string fallback_reason;
