@@ -2,6 +2,7 @@
 // Blevins, "Formulas for natural frequency and mode shape", tables 8-1 and 8-16).
 
 #include "beam/beam_test_support.hpp"
+#include "modal/modal_test_frames.hpp"
 #include "modal/tip_body_reference.hpp"
 #include "stickslip/modal.hpp"
 
@@ -222,21 +223,15 @@ TEST(ComputeModes, FreeFreeFrameHasThreeRigidBodyModes) {
 }
 
 TEST(ComputeModes, BladePlatformTFrameOfThePaper) {
-  // Paper section 4: blade 0.2 m clamped at the root, platform 0.04 m centred on the blade tip,
-  // E = 2.06e11 Pa, rho = 7800 kg/m^3, A = 6e-5 m^2, I = 2e-11 m^4; 20 + 2 x 4 elements.
+  // Paper section 4 (blade_platform_frame(), modal_test_frames.hpp).
   // Independent estimate of the first (lateral) mode: cantilever with the platform as a rigid
   // tip body (M = rho A 0.04, J = M 0.04^2 / 12) from the exact frequency equation. The neglected
   // platform flexibility (its first bending ~2.6e4 rad/s vs ~194 rad/s) shifts the frequency by
   // ~(194/2.6e4)^2 ~ 6e-5 and the 20-element discretisation by ~1e-6; tolerance 1e-3.
-  const Section s{2.06e11, 7800.0, 6e-5, 2e-11};
-  FrameModel<double> model;
-  const auto root = model.add_node(0.0, 0.0), tip = model.add_node(0.0, 0.2);
-  const auto left = model.add_node(-0.02, 0.2), right = model.add_node(0.02, 0.2);
-  model.add_member(root, tip, s, 20);
-  model.add_member(left, tip, s, 4);
-  model.add_member(tip, right, s, 4);
-  model.clamp(root);
-  const auto basis = compute_modes(model.assemble(), options_for(6, ModalSolver::Auto));
+  const BladePlatformFrame frame = blade_platform_frame();
+  const Section s = frame.section;
+  const auto tip = frame.tip;
+  const auto basis = compute_modes(frame.model.assemble(), options_for(6, ModalSolver::Auto));
   const Eigen::VectorXd hz = basis.frequencies_hz();
   std::printf("T-frame lowest frequencies [Hz]:");
   for (Eigen::Index i = 0; i < hz.size(); ++i) std::printf(" %.3f", hz(i));
@@ -276,9 +271,12 @@ TEST(ComputeModes, CantileverWithHeavyTipMass) {
   // sqrt(3 EI / (L^3 (M + 0.2357 rho A L))), itself accurate to ~1e-4 for heavy tip masses:
   // tolerance 1e-3.
   const Section s = slender_steel();
-  auto model = cantilever(1.0, 20, s);
+  FrameModel<double> model;
+  const auto root = model.add_node(0.0, 0.0), tip = model.add_node(1.0, 0.0);
+  model.add_member(root, tip, s, 20);
+  model.clamp(root);
   const double m_beam = s.rho * s.A * 1.0, M = 5 * m_beam;
-  model.add_point_mass(1, M);
+  model.add_point_mass(tip, M);
   const double w = compute_modes(model.assemble(), options_for(2, ModalSolver::Dense)).omega()(0);
   const double b = tip_body_root(0, 5.0, 0.0);
   EXPECT_NEAR(w / (b * b * bending_unit(s, 1.0)), 1.0, 1e-6);
@@ -287,14 +285,7 @@ TEST(ComputeModes, CantileverWithHeavyTipMass) {
 
 TEST(ComputeModes, GroundedSpringMassOscillators) {
   // A node without members: three uncoupled oscillators, w = sqrt(k/m) exactly.
-  FrameModel<double> model;
-  const auto n = model.add_node(0.3, 0.4);
-  model.add_point_mass(n, 2.0);
-  model.add_rotary_inertia(n, 0.5);
-  model.add_spring(n, Dof::X, 800.0);
-  model.add_spring(n, Dof::Y, 1800.0);
-  model.add_spring(n, Dof::Rz, 50.0);
-  const auto basis = compute_modes(model.assemble(), options_for(3, ModalSolver::Auto));
+  const auto basis = compute_modes(grounded_oscillators().assemble(), options_for(3, ModalSolver::Auto));
   EXPECT_NEAR(basis.omega()(0), 10.0, 1e-12);
   EXPECT_NEAR(basis.omega()(1), 20.0, 1e-12);
   EXPECT_NEAR(basis.omega()(2), 30.0, 1e-12);

@@ -15,7 +15,7 @@ namespace stickslip {
 /// Eigensolver used by compute_modes.
 enum class ModalSolver : std::uint8_t {
   Auto,   ///< Dense when num_free <= dense_limit (or num_modes is a large share of num_free), else Sparse
-  Dense,  ///< Eigen::GeneralizedSelfAdjointEigenSolver on dense K, M (all modes, O(n^3))
+  Dense,  ///< Cholesky reduction of dense K, M (and its inverse form for ill-conditioned K), O(n^3)
   Sparse  ///< Spectra shift-and-invert Lanczos with a sparse LDL^T of K - sigma M
 };
 
@@ -48,6 +48,9 @@ struct ModalOptions {
   /// Used only when AssembledFrame::num_rigid_body_modes is unknown (-1): a mode with
   /// omega^2 <= rigid_body_tolerance * trace(K)/trace(M) is then a rigid-body mode (omega = 0).
   Scalar rigid_body_tolerance = Scalar(1e-12);
+  /// When the sparse solver fails or its modes fail the checks (docs/modal.md), compute_modes
+  /// falls back to the dense solver up to this many free DOFs, and throws above.
+  Index dense_fallback_limit = 3000;
 
   /// \throws std::invalid_argument naming `where` and the offending field
   void validate(const std::string& where) const {
@@ -62,6 +65,8 @@ struct ModalOptions {
     if (max_iterations < 1)
       detail::throw_invalid(where, "options.max_iterations must be >= 1", max_iterations);
     detail::require_non_negative(where, "options.rigid_body_tolerance", rigid_body_tolerance);
+    if (dense_fallback_limit < 0)
+      detail::throw_invalid(where, "options.dense_fallback_limit must be >= 0", dense_fallback_limit);
   }
 };
 

@@ -16,12 +16,17 @@ namespace detail {
 /// cols(), set_shift(sigma), perform_op(x, y)). Replaces Spectra's SymShiftInvert, which
 /// factorises with SparseLU: for the SPD matrix K - sigma M, SimplicialLDLT (AMD ordering) needs
 /// about half the memory and time.
+///
+/// Optional deflation of known modes R (R^T M R = I, e.g. the rigid-body modes): with the
+/// M-orthogonal projector P = I - R R^T M the operator becomes y = P (K - sigma M)^{-1} P^T z,
+/// so that (applied to z = M x) the modes in R have the eigenvalue 0 instead of 1/(lambda - sigma).
 template <class Scalar_>
 class LdltShiftInvert {
  public:
   using Scalar = Scalar_;
   using SparseMatrix = Eigen::SparseMatrix<Scalar>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   LdltShiftInvert(const SparseMatrix& K, const SparseMatrix& M) : K_(K), M_(M) {}
 
@@ -45,17 +50,34 @@ class LdltShiftInvert {
   /// Spectra hook: the factorisation was done by try_factorize; sigma must match.
   void set_shift(const Scalar&) {}
 
-  /// y = (K - sigma M)^{-1} x
+  /// Deflate the M-orthonormal columns of `modes` from every later perform_op (an empty matrix
+  /// switches deflation off).
+  void deflate(const Matrix& modes) {
+    deflated_ = modes;
+    m_deflated_ = M_ * modes;
+    work_.resize(rows());
+  }
+
+  /// y = (K - sigma M)^{-1} x, or P (K - sigma M)^{-1} P^T x with deflation
   void perform_op(const Scalar* x_in, Scalar* y_out) const {
     Eigen::Map<const Vector> x(x_in, rows());
     Eigen::Map<Vector> y(y_out, rows());
-    y.noalias() = ldlt_.solve(x);
+    if (deflated_.cols() == 0) {
+      y.noalias() = ldlt_.solve(x);
+      return;
+    }
+    work_.noalias() = x - m_deflated_ * (deflated_.transpose() * x);
+    y.noalias() = ldlt_.solve(work_);
+    y -= deflated_ * (m_deflated_.transpose() * y);
   }
 
  private:
   const SparseMatrix& K_;
   const SparseMatrix& M_;
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt_;
+  Matrix deflated_;    // R, n x r
+  Matrix m_deflated_;  // M R
+  mutable Vector work_;
 };
 
 }  // namespace detail
