@@ -187,8 +187,8 @@ struct BasicRosenbrock23 {
     // linearisation, r = f(t + h/2, x0 + h/2 k1) - f0 - h/2 (T + J k1), moves the step by less
     // than c of the stage increment: |h d r| <= c |h/2 k1| (weighted RMS). With the exact J, r is
     // of second order in h k1. c = 0.01: with 0.1 the regularised friction oscillator ran with
-    // errors of 1e-3 at rtol 1e-7 (stale J across |v| ~ v_eps); with 0.01 within 3x of
-    // EveryStep's (benchmarks/ode/rosenbrock_work_precision.cpp).
+    // errors of 7e-3 at rtol 1e-5 and 1.5e-3 at rtol 1e-7 (stale J across |v| ~ v_eps), 50x
+    // EveryStep's; with 0.01, 2-4x (benchmarks/ode/rosenbrock_work_precision.cpp).
     bool linearisation_holds(Scalar h, const State& x0, const State& f0, Scalar rtol,
                              Scalar atol) {
       const Scalar c = Scalar(kLinearisationTolerance);
