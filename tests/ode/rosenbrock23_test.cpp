@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <utility>
 #include <vector>
 
@@ -54,15 +53,18 @@ struct Shifted : Unguarded {
 };
 
 /// Shifted with its exact Jacobian and df/dt, counting the calls.
+/// With `frozen`, the hooks return J and T of the start point (t, x) = (0, 1) everywhere: J = -2,
+/// T = 2, while along the solution J runs from -2 to -1 and T from 2 to about -1.
 struct ShiftedWithHooks : Shifted {
+  bool frozen = false;
   long jacobian_calls = 0, time_derivative_calls = 0;
   void jacobian(const Mode&, double t, const State& x, Eigen::Matrix<double, 1, 1>& j) {
     ++jacobian_calls;
-    j(0, 0) = -2.0 * (x[0] - std::sin(t));
+    j(0, 0) = frozen ? -2.0 : -2.0 * (x[0] - std::sin(t));
   }
   void time_derivative(const Mode&, double t, const State& x, State& dfdt) {
     ++time_derivative_calls;
-    dfdt[0] = 2.0 * (x[0] - std::sin(t)) * std::cos(t) - std::sin(t);
+    dfdt[0] = frozen ? 2.0 : 2.0 * (x[0] - std::sin(t)) * std::cos(t) - std::sin(t);
   }
 };
 
@@ -128,27 +130,17 @@ TEST(Rosenbrock23Hooks, AgreeWithFiniteDifferencesToTheirTruncationError) {
   EXPECT_LT(std::abs(a.x[0] - Shifted::exact(1.0)), 1e-4);
 }
 
-/// Shifted whose hooks return J and T of the start point (t, x) = (0, 1) everywhere: J = -2,
-/// T = 2, while along the solution J runs from -2 to -1 and T from 2 to about -1.
-struct ShiftedWithFrozenHooks : Shifted {
-  long calls = 0;
-  void jacobian(const Mode&, double, const State&, Eigen::Matrix<double, 1, 1>& j) {
-    ++calls;
-    j(0, 0) = -2.0;
-  }
-  void time_derivative(const Mode&, double, const State&, State& dfdt) { dfdt[0] = 2.0; }
-};
-
 // The tolerance 0.15 on a measured order: errors from 1e-4 down to 1e-7, in the asymptotic
 // range (the slopes of successive halvings agree to a few percent).
 TEST(Rosenbrock23, IsAWMethodOfOrderTwoWithAnyJacobian) {
   // The literature fact behind Reuse: the two-stage formula keeps order 2 with any matrix in place
   // of J and any vector in place of T (Steihaug & Wolfbrandt 1979; Shampine & Reichelt 1997).
   auto err = [](double h) {
-    ShiftedWithFrozenHooks sys;
+    ShiftedWithHooks sys;
+    sys.frozen = true;
     const auto r = run<Rosenbrock23>(sys, steps_of(h), 1.0);
     EXPECT_EQ(r.status, Status::Success) << r.message;
-    EXPECT_EQ(sys.calls, r.stats.accepted_steps);
+    EXPECT_EQ(sys.jacobian_calls, r.stats.accepted_steps);
     return std::abs(r.x[0] - Shifted::exact(1.0));
   };
   for (double h : {0.04, 0.02, 0.01})
@@ -218,11 +210,8 @@ TEST(Rosenbrock23Reuse, FewerJacobiansAndFactorisationsOnStiffLinearSystemWithin
             every.stats.accepted_steps + every.stats.rejected_steps);
   // J is constant: kept from t = 0 except after a rejection with a J from an earlier point.
   EXPECT_LE(reuse.stats.jacobian_evaluations, 1 + reuse.stats.rejected_steps);
-  EXPECT_LT(reuse.stats.factorisations, every.stats.factorisations);
-  std::printf("every step: %ld steps, %ld J, %ld LU; reuse: %ld steps, %ld J, %ld LU\n",
-              every.stats.accepted_steps, every.stats.jacobian_evaluations,
-              every.stats.factorisations, reuse.stats.accepted_steps,
-              reuse.stats.jacobian_evaluations, reuse.stats.factorisations);
+  // Measured: 1 J and 74 LU against 459 and 459.
+  EXPECT_LT(reuse.stats.factorisations, every.stats.factorisations / 2);
 }
 
 /// x' = -k(t) (x - cos t) - sin t, x(0) = 1: x = cos t for any k. k switches from 1 to 1e6
@@ -317,7 +306,7 @@ struct RegularisedFriction : Unguarded {
   }
 };
 
-TEST(Rosenbrock23Reuse, StaysWithinTheErrorOfTheClassicalMethodOnRegularisedFriction) {
+TEST(Rosenbrock23Reuse, StaysNearTheErrorOfTheClassicalMethodOnRegularisedFriction) {
   // Reference: Dormand-Prince at rtol 1e-12 (an independent method; its error ~1e-10 here).
   // Three periods of the forcing: the reference takes ~3e3 stability-bound steps per unit time.
   constexpr double kEnd = 4.0;
@@ -331,23 +320,15 @@ TEST(Rosenbrock23Reuse, StaysWithinTheErrorOfTheClassicalMethodOnRegularisedFric
   StepperOptions<double> opt;
   opt.rtol = 1e-5;
   opt.atol = 1e-8;
-  HybridStepper<RegularisedFriction, Rosenbrock23> every(sys, opt);
   HybridStepper<RegularisedFriction, Rosenbrock23Reuse> reuse(sys, opt);
-  const auto a = every.integrate(0, 0.0, x0, kEnd);
-  const auto b = reuse.integrate(0, 0.0, x0, kEnd);
-  ASSERT_TRUE(a.ok() && b.ok());
-  // The classical method's global error at rtol 1e-5 is ~3e-5 here (local errors of ~rtol at
-  // each of a dozen passages through v = 0). A kept J that only a rejection refreshes gave 1.3e-3
-  // (the error estimate of ode23s assumes the exact J); with the linearisation check 6e-5.
-  // 3e-4 = 10x the classical error separates the two by a factor 4 or more on each side.
-  const double err_every = (a.x - reference).cwiseAbs().maxCoeff();
-  const double err_reuse = (b.x - reference).cwiseAbs().maxCoeff();
-  EXPECT_LT(err_every, 3e-4);
-  EXPECT_LT(err_reuse, 3e-4) << "classical: " << err_every;
-  EXPECT_LT(b.stats.jacobian_evaluations, b.stats.accepted_steps);
-  std::printf("regularised: every %.2e (%ld steps), reuse %.2e (%ld steps, %ld J)\n", err_every,
-              a.stats.accepted_steps, err_reuse, b.stats.accepted_steps,
-              b.stats.jacobian_evaluations);
+  const auto r = reuse.integrate(0, 0.0, x0, kEnd);
+  ASSERT_TRUE(r.ok()) << r.message;
+  // Rosenbrock23 (J at every step) ends 3e-5 from the reference at rtol 1e-5 (local errors of
+  // ~rtol at each of a dozen passages through v = 0). A kept J that only a rejection refreshes
+  // gave 1.3e-3 (the error estimate of ode23s assumes the exact J); with the linearisation check
+  // 6e-5. 3e-4 = 10x the classical error separates the two by a factor 4 or more on each side.
+  EXPECT_LT((r.x - reference).cwiseAbs().maxCoeff(), 3e-4);
+  EXPECT_LT(r.stats.jacobian_evaluations, r.stats.accepted_steps);
 }
 
 }  // namespace rosenbrock23_test
