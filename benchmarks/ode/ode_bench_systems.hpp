@@ -5,9 +5,24 @@
 
 #include <Eigen/Core>
 
+#include <chrono>
 #include <cmath>
 
 namespace stickslip::bench {
+
+/// Seconds per call of `run`, averaged over as many calls as fit in at least 0.1 s.
+template <class Run>
+double seconds_per_run(Run&& run) {
+  long runs = 0;
+  double elapsed = 0;
+  const auto start = std::chrono::steady_clock::now();
+  do {
+    run();
+    ++runs;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } while (elapsed < 0.1);
+  return elapsed / static_cast<double>(runs);
+}
 
 /// Chain of n/2 unit masses with unit springs (fixed ends): x = (q, q'), q'' = -K q, K
 /// tridiagonal (2, -1). O(n) right-hand side; no guards.

@@ -7,7 +7,6 @@
 #include <stickslip/ode.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -51,17 +50,10 @@ Point run(const std::string& name, double parameter, stickslip::StepperOptions<d
                                 std::abs(log.times[k] - sys.switch_time(static_cast<int>(k))));
     p.final_error = (r.x - sys.exact(kEnd)).cwiseAbs().maxCoeff();
   }
-  // Time: repeat for at least 0.1 s.
-  long runs = 0;
-  const auto start = std::chrono::steady_clock::now();
-  double elapsed = 0;
-  do {
-    auto rr = stepper.integrate(0, 0.0, x0, kEnd);
+  p.seconds = stickslip::bench::seconds_per_run([&] {
+    const auto rr = stepper.integrate(0, 0.0, x0, kEnd);
     if (rr.x[0] == 12345.0) std::puts("");
-    ++runs;
-    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  } while (elapsed < 0.1);
-  p.seconds = elapsed / static_cast<double>(runs);
+  });
   return p;
 }
 

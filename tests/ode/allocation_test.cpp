@@ -56,6 +56,10 @@ TEST(NoAllocationPerStep, Rosenbrock23) {
   expect_allocations_independent_of_run_length<stickslip::Rosenbrock23>();
 }
 
+TEST(NoAllocationPerStep, Rosenbrock23Reuse) {
+  expect_allocations_independent_of_run_length<stickslip::Rosenbrock23Reuse>();
+}
+
 TEST(NoAllocationPerStep, DynamicStateAllocatesOnlyPerRun) {
   // A dynamic-size linear system (4 states): the run's allocations (result, workspace reuse)
   // do not depend on how many steps it takes.
@@ -70,6 +74,11 @@ TEST(NoAllocationPerStep, DynamicStateAllocatesOnlyPerRun) {
   const long a2 = allocations_of_run<stickslip::Rosenbrock23>(sys, x0, 10.0, loc, s2, e2);
   EXPECT_GT(s2, 4 * s1);
   EXPECT_EQ(a1, a2);
+  // Rosenbrock23Reuse adds the linearisation check (a matrix-vector product) to each step.
+  const long c1 = allocations_of_run<stickslip::Rosenbrock23Reuse>(sys, x0, 1.0, loc, s1, e1);
+  const long c2 = allocations_of_run<stickslip::Rosenbrock23Reuse>(sys, x0, 10.0, loc, s2, e2);
+  EXPECT_GT(s2, 4 * s1);
+  EXPECT_EQ(c1, c2);
   const long b1 = allocations_of_run<stickslip::DormandPrince54>(sys, x0, 1.0, loc, s1, e1);
   const long b2 = allocations_of_run<stickslip::DormandPrince54>(sys, x0, 10.0, loc, s2, e2);
   EXPECT_GT(s2, 4 * s1);

@@ -105,7 +105,7 @@ class HybridStepper {
   // f and guards at the start of a mode (run start or after a transition); false when f or g is
   // not finite.
   bool start_mode(const Mode& m, Scalar t, StepperStats& st) {
-    core_.new_point();
+    detail::start_new_mode(core_);
     if (!eval_rhs(m, t, x_, f_, st)) return false;
     const Eigen::Index ng = sys_.num_guards(m);
     if (ga_.size() != ng) {

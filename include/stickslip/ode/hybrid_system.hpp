@@ -80,6 +80,7 @@ struct StepperStats {
   long rhs_evaluations = 0;
   long guard_evaluations = 0;
   long jacobian_evaluations = 0;
+  long factorisations = 0;  ///< LU factorisations of the iteration matrix (Rosenbrock23)
   long events = 0;
 };
 

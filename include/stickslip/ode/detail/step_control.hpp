@@ -9,6 +9,8 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace stickslip {
 namespace detail {
@@ -26,6 +28,23 @@ EIGEN_ALWAYS_INLINE Scalar weighted_rms(const Eigen::MatrixBase<E>& err,
   if (!(std::isfinite(sum)))
     sum = (err.array() == Scalar(0)).select(Scalar(0), err.array() / weight).square().sum();
   return sqrt(sum / static_cast<Scalar>(err.size()));
+}
+
+template <class Core, class = void>
+struct has_new_mode : std::false_type {};
+template <class Core>
+struct has_new_mode<Core, std::void_t<decltype(std::declval<Core&>().new_mode())>>
+    : std::true_type {};
+
+/// Tell a method's core that a mode starts (run start, after a transition): `new_mode()` when it
+/// keeps state across accepted steps (Rosenbrock23's Jacobian), otherwise `new_point()`.
+template <class Core>
+void start_new_mode(Core& core) noexcept {
+  if constexpr (has_new_mode<Core>::value) {
+    core.new_mode();
+  } else {
+    core.new_point();
+  }
 }
 
 /// Short decimal text of a number for run messages ("3.1e-15", "0.01234").
