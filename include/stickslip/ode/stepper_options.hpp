@@ -59,7 +59,7 @@ struct StepperOptions {
   Scalar max_step = std::numeric_limits<Scalar>::infinity();  ///< largest step (adaptive)
   long max_steps = 100'000'000;        ///< budget of step attempts (accepted + rejected)
   EventLocation event_location = EventLocation::DenseRootFinding;
-  EventState event_state = EventState::DenseOutput;  ///< state at a root-found event (not bisection)
+  EventState event_state = EventState::Reintegrate;  ///< state at a root-found event (not bisection); see docs/ode.md
   Scalar event_time_tolerance = Scalar(1e-12);  ///< width of the final bracket of an event time
   Scalar guard_zero_tolerance = Scalar(1e-12);  ///< |g| below this at a mode start counts as zero
   long zeno_max_events = 1000;         ///< more events than this inside zeno_window -> ZenoGuard
