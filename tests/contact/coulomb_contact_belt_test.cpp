@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace contact_coulomb_contact_belt_test {  // named: the contact test files share one (unity) translation unit
 namespace {
@@ -60,13 +61,19 @@ struct BeltLog : EventLog {
   }
 };
 
-template <class Method>
-void check_belt_cycle(const BeltCase& c, stickslip::StepperOptions<double> opt) {
+// m = 1 kg, k = 100 N/m, N = 10 N (w = 10 rad/s), the belt speed of the case.
+SingleDofParameters belt_parameters(const BeltCase& c) {
   SingleDofParameters p;
   p.mass = 1.0;
   p.stiffness = 100.0;
   p.normal_force = 10.0;
   p.belt_speed = c.belt_speed;
+  return p;
+}
+
+template <class Method>
+void check_belt_cycle(const BeltCase& c, stickslip::StepperOptions<double> opt) {
+  const SingleDofParameters p = belt_parameters(c);
   const BeltCycle ref(p.mass, p.stiffness, p.normal_force, c);
   Belt sys(p, stickslip::CoulombContact<Law>(Law(c.mu_s, c.mu_k)));
 
@@ -138,6 +145,51 @@ TEST(BeltStickSlip, LimitCycleMatchesClosedFormRungeKutta4Bisection) {
   opt.fixed_step = 1e-3;
   opt.event_location = stickslip::EventLocation::Bisection;
   check_belt_cycle<stickslip::RungeKutta4>({0.5, 0.3, 0.1}, opt);
+}
+
+// Issue #18.1, "a stop read as a velocity reversal": with large RK4 steps the state handed to
+// the transition at the end of a slip was past v = 0 by the dense-output error (3e-8 ... 1.7e-7),
+// above the contact's velocity tolerance sqrt(eps), and decide() read it as a reversal (slip
+// positive) where the body sticks: every second event was wrong. Now the stepper hands over a
+// state on v = 0 to |v'| event_time_tolerance, and the oscillator decides a slip whose velocity
+// guard fired at rest (decide_at_rest). The event sequence must be the closed form's:
+// stick -> slip negative -> stick ..., as many switches as the closed form has in [0, t_end].
+template <class Method>
+void check_belt_sequence(const BeltCase& c, stickslip::StepperOptions<double> opt,
+                         const std::string& what) {
+  const SingleDofParameters p = belt_parameters(c);
+  const BeltCycle ref(p.mass, p.stiffness, p.normal_force, c);
+  Belt sys(p, stickslip::CoulombContact<Law>(Law(c.mu_s, c.mu_k)));
+  const Eigen::Vector4d x0(ref.x_k - ref.d, c.belt_speed, 0, 0);
+  EventLog log;
+  stickslip::HybridStepper<Belt, Method> stepper(sys, opt);
+  // 6.5 periods: the end falls inside a slip, far (0.5 t_slip) from any switch.
+  const double period = ref.t_stick + ref.t_slip;
+  const auto r = stepper.integrate(S::Stick, 0.0, x0, 6 * period + ref.t_stick + 0.5 * ref.t_slip, log);
+  ASSERT_TRUE(r.ok()) << what << ": " << r.message;
+  ASSERT_EQ(log.events.size(), 13u) << what;
+  for (std::size_t i = 0; i < log.events.size(); ++i) {
+    const bool from_stick = i % 2 == 0;
+    EXPECT_EQ(log.events[i].from, from_stick ? S::Stick : S::SlipNegative) << what << ", event " << i;
+    EXPECT_EQ(log.events[i].to, from_stick ? S::SlipNegative : S::Stick) << what << ", event " << i;
+  }
+}
+
+TEST(BeltStickSlip, StopIsNotReadAsAReversalAtLargeSteps) {
+  for (const BeltCase c : {BeltCase{0.6, 0.3, 0.1}, BeltCase{0.4, 0.3, 0.1}}) {
+    for (double h : {0.05, 0.02, 0.01}) {  // w h = 0.5, 0.2, 0.1
+      stickslip::StepperOptions<double> opt;
+      opt.fixed_step = h;
+      check_belt_sequence<stickslip::RungeKutta4>(c, opt, "RK4 h = " + std::to_string(h));
+    }
+    for (double rtol : {1e-3, 1e-4}) {
+      stickslip::StepperOptions<double> opt;
+      opt.rtol = rtol;
+      opt.atol = rtol * 1e-2;
+      check_belt_sequence<stickslip::DormandPrince54>(c, opt,
+                                                      "DOPRI rtol = " + std::to_string(rtol));
+    }
+  }
 }
 
 }  // namespace

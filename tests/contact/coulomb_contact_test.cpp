@@ -257,5 +257,66 @@ TEST(CoulombContactForce, RegularisedLawIgnoresTheStateButLiftOff) {
   EXPECT_EQ(contact.friction_force(S::LiftOff, 0.2, 2.0, 0.7), 0.0);
 }
 
+// Issue #18.1: a slip state whose velocity guard fired is at v = 0 as located. decide() reads a
+// leftover v above its tolerance as motion; decide_at_rest() applies rules 1, 3, 4 only.
+TEST(CoulombContactDecide, AtRestIgnoresTheLeftoverVelocityOfAStop) {
+  const CoulombContact<CoulombLaw<double>> contact(CoulombLaw<double>(kMuS, kMuK), kTol);
+  const double N = 2.0, leftover = 10 * kTol;
+  EXPECT_EQ(contact.decide(S::SlipNegative, leftover, N, 0.4), S::SlipPositive);  // the old misread
+  EXPECT_EQ(contact.decide_at_rest(N, 0.4), S::Stick);
+  EXPECT_EQ(contact.decide_at_rest(N, 1.0), S::Stick);           // closed set: at mu_s N
+  EXPECT_EQ(contact.decide_at_rest(N, 1.5), S::SlipNegative);    // reversal: -sgn f
+  EXPECT_EQ(contact.decide_at_rest(N, -1.5), S::SlipPositive);
+  EXPECT_EQ(contact.decide_at_rest(0.0, 0.4), S::LiftOff);
+  // decide(from, v, N, f) with |v| <= tol is decide_at_rest(N, f) on the whole table's f and N.
+  for (double n : {2.0, 0.0, -1.0, 1e-300})
+    for (double f : {0.0, 0.4, -0.4, 1.0, -1.0, 1.5, -1.5})
+      EXPECT_EQ(contact.decide(S::SlipPositive, 0.5 * kTol, n, f), contact.decide_at_rest(n, f));
+  const double inf = std::numeric_limits<double>::infinity();
+  expect_invalid_argument([&] { contact.decide_at_rest(inf, 0.0); }, {"decide_at_rest", "N"});
+  expect_invalid_argument([&] { contact.decide_at_rest(1.0, -inf); },
+                          {"decide_at_rest", "f_stick_required"});
+  const CoulombContact<RegularisedLaw<double>> smooth(
+      RegularisedLaw<double>(kMuS, 1e-3, RegularisedShape::Tanh), kTol);
+  EXPECT_EQ(smooth.decide_at_rest(N, 5.0), S::Stick);  // a label: no stick state to leave
+}
+
+TEST(CoulombContactDecide, VelocityGuardFiredOnlyForTheSlipVelocityGuard) {
+  using C = CoulombContact<CoulombLaw<double>>;
+  const stickslip::TriggeredGuards v_guard{0}, n_guard{1}, both{0, 1}, other_contact{3, 4};
+  EXPECT_TRUE(C::velocity_guard_fired(S::SlipPositive, v_guard));
+  EXPECT_TRUE(C::velocity_guard_fired(S::SlipNegative, both));
+  EXPECT_FALSE(C::velocity_guard_fired(S::SlipNegative, n_guard));  // lift-off guard only
+  EXPECT_FALSE(C::velocity_guard_fired(S::Stick, v_guard));         // stick: capacity guard 0
+  EXPECT_FALSE(C::velocity_guard_fired(S::LiftOff, v_guard));
+  // A contact whose guards start at index 3 of the system's guard vector.
+  EXPECT_TRUE(C::velocity_guard_fired(S::SlipPositive, other_contact, 3));
+  EXPECT_FALSE(C::velocity_guard_fired(S::SlipPositive, v_guard, 3));
+  using R = CoulombContact<RegularisedLaw<double>>;  // no velocity guard at all
+  EXPECT_FALSE(R::velocity_guard_fired(S::SlipPositive, v_guard));
+}
+
+// Issue #18.6: guards() with a callable evaluates the stick force required in stick only, and
+// gives the values of the scalar form.
+TEST(CoulombContactGuards, RequiredForceIsEvaluatedInStickOnly) {
+  const CoulombContact<CoulombLaw<double>> contact(CoulombLaw<double>(kMuS, kMuK), kTol);
+  const double v = 0.3, N = 2.0, f_req = 0.7;
+  int calls = 0;
+  auto required = [&] {
+    ++calls;
+    return f_req;
+  };
+  for (S s : kAllStates)
+    for (bool watch : {false, true}) {
+      std::array<double, 3> lazy{}, eager{};
+      calls = 0;
+      contact.guards(s, v, N, required, watch, lazy.data());
+      EXPECT_EQ(calls, s == S::Stick ? 1 : 0) << s;
+      contact.guards(s, v, N, f_req, watch, eager.data());
+      const auto n = static_cast<std::size_t>(CoulombContact<CoulombLaw<double>>::num_guards(s, watch));
+      for (std::size_t i = 0; i < n; ++i) EXPECT_EQ(lazy[i], eager[i]) << s << ", guard " << i;
+    }
+}
+
 }  // namespace
 }  // namespace contact_coulomb_contact_test

@@ -95,16 +95,22 @@ class SingleDofOscillator {
   }
   void guards(const Mode& m, double t, const State& x,
               Eigen::Matrix<double, Eigen::Dynamic, 1>& g) const {
-    contact_.guards(m, sliding_velocity(x), normal_force(t), stick_force_required(t, x),
-                    p_.watch_lift_off, g.data());
+    // The stick force (an excitation evaluation) is computed in stick only.
+    contact_.guards(m, sliding_velocity(x), normal_force(t),
+                    [&] { return stick_force_required(t, x); }, p_.watch_lift_off, g.data());
   }
   stickslip::CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
     return Contact::guard_direction(m, i, p_.watch_lift_off);
   }
-  stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards&, double t,
+  stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards& which, double t,
                                          State& x) const {
     const double N = normal_force(t);
-    m = contact_.decide(m, sliding_velocity(x), N, stick_force_required(t, x));
+    const double f_required = stick_force_required(t, x);
+    // A slip state whose velocity guard fired is at v = 0 as located (the stepper hands over a
+    // state on the guard's surface): decide without reading the leftover of v.
+    m = Contact::velocity_guard_fired(m, which)
+            ? contact_.decide_at_rest(N, f_required)
+            : contact_.decide(m, sliding_velocity(x), N, f_required);
     if (Contact::has_stick_state && m == Mode::Stick) x[1] = p_.belt_speed;  // onto v = 0
     if (m == Mode::LiftOff)
       return stickslip::TransitionAction::halt("lift-off: normal force " + std::to_string(N) +

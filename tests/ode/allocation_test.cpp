@@ -1,5 +1,28 @@
 // No heap allocation per step: the number of allocations of a run does not grow with the number
-// of steps and events (global operator new is counted in this executable only).
+// of steps and events (global operator new is counted in this executable only, and so are Eigen's
+// own heap allocations, which go to std::malloc, not operator new).
+
+// Eigen's allocation check (EIGEN_RUNTIME_NO_MALLOC) with malloc "forbidden" calls eigen_assert
+// with a message naming the heap allocation at every Eigen allocation: count those instead of
+// failing; any other failed Eigen assertion still aborts. Must precede every Eigen include.
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+namespace stickslip_test {
+inline std::atomic<long> g_eigen_allocations{0};
+inline void eigen_assertion(bool ok, const char* text) {
+  if (ok) return;
+  if (std::strstr(text, "heap allocation is forbidden") != nullptr) {
+    ++g_eigen_allocations;
+    return;
+  }
+  std::fprintf(stderr, "Eigen assertion failed: %s\n", text);
+  std::abort();
+}
+}  // namespace stickslip_test
+#define EIGEN_RUNTIME_NO_MALLOC
+#define eigen_assert(x) ::stickslip_test::eigen_assertion(static_cast<bool>(x), #x)
 
 #include <stickslip/ode.hpp>
 
@@ -8,7 +31,19 @@
 #include "allocation_counter.hpp"
 #include "ode/ode_test_systems.hpp"
 
-using stickslip_test::g_allocations;
+namespace {
+// Every heap allocation: operator new and Eigen's (counted once Eigen's check is switched on).
+struct AllAllocations {
+  long load() const {
+    return stickslip_test::g_allocations.load() + stickslip_test::g_eigen_allocations.load();
+  }
+} const g_allocations;
+// Eigen reports its allocations from here on (the flag is read at each allocation).
+const bool g_eigen_counting = [] {
+  Eigen::internal::set_is_malloc_allowed(false);
+  return true;
+}();
+}  // namespace
 
 namespace {
 
@@ -58,6 +93,41 @@ TEST(NoAllocationPerStep, Rosenbrock23) {
 
 TEST(NoAllocationPerStep, Rosenbrock23Reuse) {
   expect_allocations_independent_of_run_length<stickslip::Rosenbrock23Reuse>();
+}
+
+// Issue #18.3: stick has two guards, slip one; every event changed the guard count and
+// reallocated the stepper's guard vectors and the guard monitor's arrays. After a first run that
+// has visited both counts, runs of any length allocate the same (nothing per event).
+template <class Method>
+void expect_no_allocation_per_mode_change(stickslip::EventLocation loc) {
+  stickslip::test::StickSlipBelt belt;
+  StepperOptions<double> opt;
+  opt.event_location = loc;
+  opt.fixed_step = 1e-2;
+  HybridStepper<stickslip::test::StickSlipBelt, Method> stepper(belt, opt);
+  const Eigen::Vector2d x0(0.0, belt.v_b);
+  stepper.integrate(0, 0.0, x0, 10.0);  // stick, slip, stick: both guard counts seen
+  auto allocations = [&](double t_end, long& events) {
+    const long before = g_allocations.load();
+    const auto r = stepper.integrate(0, 0.0, x0, t_end);
+    const long count = g_allocations.load() - before;
+    EXPECT_TRUE(r.ok()) << r.message;
+    events = r.stats.events;
+    return count;
+  };
+  long e1 = 0, e2 = 0;
+  const long short_run = allocations(10.0, e1);
+  const long long_run = allocations(100.0, e2);
+  EXPECT_GT(e2, 4 * e1);
+  EXPECT_EQ(short_run, long_run) << Method::name << ", events " << e1 << " vs " << e2;
+}
+
+TEST(NoAllocationPerEvent, GuardCountChangesBetweenModes) {
+  for (auto loc : {stickslip::EventLocation::DenseRootFinding, stickslip::EventLocation::Bisection}) {
+    expect_no_allocation_per_mode_change<stickslip::RungeKutta4>(loc);
+    expect_no_allocation_per_mode_change<stickslip::DormandPrince54>(loc);
+    expect_no_allocation_per_mode_change<stickslip::Rosenbrock23>(loc);
+  }
 }
 
 TEST(NoAllocationPerStep, DynamicStateAllocatesOnlyPerRun) {

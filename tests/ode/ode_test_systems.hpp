@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -149,6 +150,74 @@ struct Riccati {
     return TransitionAction::proceed();
   }
   static double exact(double t, double x0) { return x0 / (1.0 + x0 * t); }
+};
+
+}  // namespace stickslip::test
+
+namespace stickslip::test {
+
+/// Mass-spring on a belt moving at v_b with Coulomb friction mu_s > mu_k (m = k = N = 1), written
+/// as a plain hybrid system: mode 0 stick (x' = v_b, x'' = 0; two guards, the capacity margins
+/// mu_s - x and mu_s + x, both Falling), mode 1 slip (x'' = -x + mu_k; one guard, the sliding
+/// velocity x' - v_b, Rising). The guard count changes at every event. Closed form: from x = 0
+/// in stick, stick ends at x = mu_s (t = mu_s / v_b); slip from (mu_s, v_b) with a = mu_s - mu_k
+/// lasts 2 pi - 2 atan(a / v_b) and ends at x = mu_k - a; the stick that follows lasts 2 a / v_b.
+/// The transition records how far the state it receives is from the surface of the guard that
+/// fired (|g| there).
+struct StickSlipBelt {
+  using Scalar = double;
+  using State = Eigen::Vector2d;
+  using Mode = int;
+  double mu_s = 0.4, mu_k = 0.3, v_b = 0.1;
+  double max_surface_distance = 0;  ///< max |g_fired| over the states handed to transition
+  void rhs(const Mode& m, double, const State& x, State& d) const {
+    if (m == 0) {
+      d << v_b, 0.0;
+    } else {
+      d << x[1], -x[0] + mu_k;
+    }
+  }
+  Eigen::Index num_guards(const Mode& m) const { return m == 0 ? 2 : 1; }
+  void guards(const Mode& m, double, const State& x, Eigen::VectorXd& g) const {
+    if (m == 0) {
+      g[0] = mu_s - x[0];
+      g[1] = mu_s + x[0];
+    } else {
+      g[0] = x[1] - v_b;
+    }
+  }
+  CrossingDirection guard_direction(const Mode& m, Eigen::Index) const {
+    return m == 0 ? CrossingDirection::Falling : CrossingDirection::Rising;
+  }
+  TransitionAction transition(Mode& m, const TriggeredGuards& which, double, State& x) {
+    for (Eigen::Index i : which) {
+      const double g = m == 1 ? x[1] - v_b : (i == 0 ? mu_s - x[0] : mu_s + x[0]);
+      max_surface_distance = std::max(max_surface_distance, std::abs(g));
+    }
+    if (m == 1) {
+      m = 0;
+      x[1] = v_b;  // exact reset on entering stick
+    } else {
+      m = 1;
+    }
+    return TransitionAction::proceed();
+  }
+  double slip_duration() const {
+    return 2.0 * std::acos(-1.0) - 2.0 * std::atan((mu_s - mu_k) / v_b);
+  }
+  double stick_duration() const { return 2.0 * (mu_s - mu_k) / v_b; }
+  /// Exact state at t, from x = 0, x' = v_b in stick at t = 0.
+  State exact(double t) const {
+    const double first = mu_s / v_b;
+    if (t < first) return State(v_b * t, v_b);
+    const double period = slip_duration() + stick_duration();
+    const double tau = std::fmod(t - first, period);
+    const double a = mu_s - mu_k;
+    if (tau < slip_duration())
+      return State(mu_k + a * std::cos(tau) + v_b * std::sin(tau),
+                   -a * std::sin(tau) + v_b * std::cos(tau));
+    return State(mu_k - a + v_b * (tau - slip_duration()), v_b);
+  }
 };
 
 }  // namespace stickslip::test

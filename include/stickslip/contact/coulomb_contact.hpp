@@ -51,7 +51,8 @@ class CoulombContact {
 
   /// \param velocity_tolerance |v| <= velocity_tolerance is "v = 0" in decide(); choose it above
   ///        the velocity overshoot of event location (|v'| times the event time tolerance) and
-  ///        below any sliding speed that matters.
+  ///        below any sliding speed that matters. It is not read when the contact's own velocity
+  ///        guard fired: decide_at_rest() / velocity_guard_fired() take v = 0 as located.
   /// \throws std::invalid_argument if velocity_tolerance is negative or non-finite.
   explicit CoulombContact(Law law, Scalar velocity_tolerance = default_velocity_tolerance())
       : law_(std::move(law)), velocity_tolerance_(velocity_tolerance) {
@@ -94,6 +95,16 @@ class CoulombContact {
   /// g0 = N. Directions in guard_direction().
   void guards(ContactState s, Scalar v, Scalar N, Scalar f_required, bool watch_lift_off,
               Scalar* g) const {
+    guards(s, v, N, [f_required] { return f_required; }, watch_lift_off, g);
+  }
+
+  /// As above, with the stick force required given by a callable `Scalar f_required()`, called
+  /// in Stick only (slip and lift-off guards do not depend on it): for a caller whose f_required
+  /// costs an evaluation of its own (an excitation, a constraint solve).
+  template <class RequiredForce,
+            std::enable_if_t<std::is_invocable_r_v<Scalar, RequiredForce&>, int> = 0>
+  void guards(ContactState s, Scalar v, Scalar N, RequiredForce&& f_required,
+              bool watch_lift_off, Scalar* g) const {
     if (s == ContactState::LiftOff) {
       g[0] = N;
       return;
@@ -102,13 +113,26 @@ class CoulombContact {
     if constexpr (has_stick_state) {
       if (s == ContactState::Stick) {
         const Scalar capacity = stick_capacity(N);
-        g[0] = capacity - f_required;
-        g[1] = capacity + f_required;
+        const Scalar f = f_required();
+        g[0] = capacity - f;
+        g[1] = capacity + f;
       } else {
         g[0] = v;
       }
     }
     if (watch_lift_off) g[n] = N;
+  }
+
+  /// True when the sliding-velocity guard of state s (slip: the contact's guard 0, at index
+  /// `first` of the system's guard vector) is among the guards `which` that fired together. The
+  /// stepper then hands over a state on v = 0 (to |v'| times its event time tolerance): the
+  /// contact is at rest, and decide_at_rest() applies.
+  static bool velocity_guard_fired(ContactState s, const TriggeredGuards& which,
+                                   Eigen::Index first = 0) noexcept {
+    if (!has_stick_state || !is_slipping(s)) return false;
+    for (Eigen::Index i : which)
+      if (i == first) return true;
+    return false;
   }
 
   /// Crossing direction of guard i in state s: stick g0, g1 Falling (capacity exceeded; g0 leads
@@ -143,6 +167,22 @@ class CoulombContact {
     }
     if (!(N > Scalar(0))) return ContactState::LiftOff;
     if (abs(v) > velocity_tolerance_) return slip_state(v);
+    return decide_at_rest(N, f_stick_required);
+  }
+
+  /// Decision for a contact at rest (v = 0 by construction: stuck, or a slip state whose
+  /// velocity guard fired, see velocity_guard_fired): rules 1, 3, 4 of decide(); the leftover
+  /// sliding velocity of event location is not read, so no velocity tolerance is involved.
+  /// \throws std::invalid_argument if N or f_stick_required is non-finite.
+  ContactState decide_at_rest(Scalar N, Scalar f_stick_required) const {
+    using std::abs;
+    using std::isfinite;
+    if (!(isfinite(N) && isfinite(f_stick_required))) {
+      detail::require_finite("CoulombContact::decide_at_rest", "N", N);
+      detail::require_finite("CoulombContact::decide_at_rest", "f_stick_required",
+                             f_stick_required);
+    }
+    if (!(N > Scalar(0))) return ContactState::LiftOff;
     if constexpr (has_stick_state) {
       if (abs(f_stick_required) <= stick_capacity(N)) return ContactState::Stick;
       return slip_state(-f_stick_required);

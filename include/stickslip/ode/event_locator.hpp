@@ -32,11 +32,12 @@ class GuardMonitor {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
   /// Set up for a mode with guard values g0 and their directions; z = zero tolerance.
-  /// `direction(i)` returns the CrossingDirection of guard i. Allocates only if size changes.
+  /// `direction(i)` returns the CrossingDirection of guard i. The storage only grows: it
+  /// allocates when a mode has more guards than any mode before, never for fewer.
   template <class DirectionFn>
   void start_mode(const Vector& g0, DirectionFn&& direction, Scalar z) {
     const Eigen::Index n = g0.size();
-    if (level_.size() != n) {
+    if (level_.size() < n) {
       level_.resize(n);
       sign_.resize(n);
       armed_.resize(n);

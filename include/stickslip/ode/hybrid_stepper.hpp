@@ -45,8 +45,8 @@ struct has_on_event_with_state<
 /// The run never throws for numerical outcomes: the Result carries the Status, the time, a
 /// message and the statistics. Throws std::invalid_argument for invalid options (constructor) or
 /// arguments (integrate: non-finite t0/t_end, t_end < t0, empty or non-finite x0).
-/// With a fixed-size State, a step (and an event, while the number of guards of the modes does
-/// not change) performs no heap allocation; workspace is sized at the start of integrate.
+/// With a fixed-size State, a step and an event perform no heap allocation: workspace is sized at
+/// the start of integrate, and guard vectors once per distinct guard count of the modes visited.
 template <class System, class Method = DormandPrince54>
 class HybridStepper {
   static_assert(is_hybrid_system_v<System>,
@@ -107,14 +107,8 @@ class HybridStepper {
   bool start_mode(const Mode& m, Scalar t, StepperStats& st) {
     detail::start_new_mode(core_);
     if (!eval_rhs(m, t, x_, f_, st)) return false;
-    const Eigen::Index ng = sys_.num_guards(m);
-    if (ga_.size() != ng) {
-      ga_.resize(ng);
-      gb_.resize(ng);
-      gt_.resize(ng);
-      roots_.resize(ng);
-    }
-    guarded_ = ng > 0;
+    use_guard_count(sys_.num_guards(m));
+    guarded_ = ga_.size() > 0;
     eval_guards(m, t, x_, ga_, st);
     if (!detail::all_finite(ga_)) return false;
     monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
@@ -122,11 +116,37 @@ class HybridStepper {
     return true;
   }
 
+  // Make ga_, gb_, gt_ vectors of ng guards. The vectors of each guard count seen are kept:
+  // those of the current count are parked in their slot and those of ng taken out (swapping Eigen
+  // vectors exchanges buffers), so a mode change allocates only the first time its count appears.
+  void use_guard_count(Eigen::Index ng) {
+    const Eigen::Index current = ga_.size();
+    if (current == ng) return;
+    const auto slots = static_cast<std::size_t>(std::max(current, ng)) + 1;
+    if (guard_sets_.size() < slots) guard_sets_.resize(slots);
+    for (Eigen::Index count : {current, ng}) {
+      GuardSet& slot = guard_sets_[static_cast<std::size_t>(count)];
+      ga_.swap(slot.a);
+      gb_.swap(slot.b);
+      gt_.swap(slot.t);
+    }
+    if (ga_.size() != ng) {  // first visit of this count
+      ga_.resize(ng);
+      gb_.resize(ng);
+      gt_.resize(ng);
+    }
+    if (roots_.size() < ng) roots_.resize(ng);
+  }
+
+  // Throws std::invalid_argument when the run cannot advance its clock or its samples.
+  void check_time_resolution(Scalar t0, Scalar t_end) const;
+
   Scalar initial_step(const Mode& m, Scalar t, Scalar hmax, StepperStats& st);
 
-  // Locate the earliest crossing in the accepted trial step [t, t1]; on return xe_, fe_ hold the
-  // state and f at the event time (returned), triggered_ the guards, and the core's dense output
-  // covers [t, t_event].
+  // Locate the earliest crossing in the accepted trial step [t, t1]; on return xe_ holds the
+  // state at the event time (returned) and triggered_ the guards. When event_on_step_ is true the
+  // core's dense output of [t, t1] (x1_, f1_) covers [t, t_event]; otherwise fe_ holds f at the
+  // event and the core's dense output is that of the step [t, t_event].
   Scalar locate_event(const Mode& m, Scalar t, Scalar h, Scalar t1, StepperStats& st);
 
   template <class Observer>
@@ -149,12 +169,52 @@ class HybridStepper {
   detail::GuardMonitor<Scalar> monitor_;
   State x_, f_, x1_, f1_, xe_, fe_, xs_;
   GuardVector ga_, gb_, gt_, roots_;
+  struct GuardSet {
+    GuardVector a, b, t;
+  };
+  std::vector<GuardSet> guard_sets_;  // parked guard vectors, indexed by guard count
   TriggeredGuards triggered_;
+  bool event_on_step_ = false;
   std::vector<Scalar> event_ring_;
   Scalar t0_ = 0;
   long next_sample_ = 0;
   bool guarded_ = false;  // the current mode has guards (a mode without skips all guard work)
 };
+
+template <class System, class Method>
+void HybridStepper<System, Method>::check_time_resolution(Scalar t0, Scalar t_end) const {
+  static const std::string where = "HybridStepper::integrate";
+  const Scalar t_max = std::max(std::abs(t0), std::abs(t_end));
+  if (!adaptive_) {
+    // RK4 takes no step below min_step * max(1, |t|), the bound an adaptive method fails at.
+    const Scalar hmin = opt_.min_step * std::max(Scalar(1), t_max);
+    if (!(opt_.fixed_step >= hmin))
+      detail::throw_invalid(where,
+                            "options.fixed_step must be >= options.min_step * max(1, |t|) = " +
+                                detail::format_value(hmin) + " for t in [" +
+                                detail::format_value(t0) + ", " + detail::format_value(t_end) +
+                                "], or t + h does not resolve the step",
+                            opt_.fixed_step);
+  }
+  const Scalar dt = opt_.output_interval;
+  if (!(dt > 0)) return;
+  const Scalar resolution = Scalar(4) * std::numeric_limits<Scalar>::epsilon() * t_max;
+  if (!(dt > resolution))
+    detail::throw_invalid(where,
+                          "options.output_interval must exceed the time resolution 4 eps |t| = " +
+                              detail::format_value(resolution) + " at |t| = " +
+                              detail::format_value(t_max) +
+                              ", or the sample times t0 + k dt do not advance",
+                          dt);
+  const Scalar samples = std::floor((t_end - t0) / dt) + Scalar(1);
+  if (!(samples <= static_cast<Scalar>(opt_.max_samples)))
+    detail::throw_invalid(where,
+                          "options.output_interval asks for " + detail::format_value(samples) +
+                              " samples over [t0, t_end] = [" + detail::format_value(t0) + ", " +
+                              detail::format_value(t_end) + "], more than options.max_samples = " +
+                              std::to_string(opt_.max_samples),
+                          dt);
+}
 
 template <class System, class Method>
 auto HybridStepper<System, Method>::initial_step(const Mode& m, Scalar t, Scalar hmax,
@@ -191,6 +251,7 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
   const Scalar tol = opt_.event_time_tolerance;
   const Eigen::Index ng = gb_.size();
   triggered_.clear();
+  event_on_step_ = false;
   if (opt_.event_location == EventLocation::Bisection) {
     // The paper's way: halve [lo, hi], re-integrating one step from t to the midpoint.
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
@@ -241,13 +302,31 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
   }
   for (Eigen::Index i = 0; i < ng; ++i)
     if (roots_[i] <= first + tol) triggered_.push_back(i);
-  if (first >= t1) {
-    xe_ = x1_;
-    fe_ = f1_;
-    return t1;
+  if (first >= t1 || opt_.event_state == EventState::DenseOutput) {
+    // The state on the dense output at the right end of the root's bracket: the guard that fired
+    // is past zero there by at most |g'| event_time_tolerance.
+    event_on_step_ = true;
+    if (first >= t1) {
+      xe_ = x1_;
+    } else {
+      core_.dense((first - t) / h, h, x_, f_, x1_, f1_, xe_);
+    }
+    return first;
   }
-  // Re-integrate [t, first] with the method itself: full order at the event, and the core's
-  // dense output then covers [t, first].
+  // Re-integrate [t, first] with the method itself (full order at the event; the core's dense
+  // output then covers [t, first]). The step's own guard and the dense output's differ by the
+  // dense-output error, so the root on the step lies on either side of `first`: refine it on
+  // re-integrated steps, so that the state handed to the transition lies on the switching surface
+  // to within |g'| event_time_tolerance, not to within the dense-output error.
+  // Slope of the dense output's guard at `first` (before the re-integration replaces the core's
+  // stages): near the root the step's guard is the dense one plus a nearly constant offset.
+  const Scalar w = std::min(first - t, std::max(Scalar(16) * tol, Scalar(1e-6) * h));
+  auto dense_distance = [&](Scalar tc) {
+    core_.dense((tc - t) / h, h, x_, f_, x1_, f1_, xs_);
+    eval_guards(m, tc, xs_, gt_, st);
+    return monitor_.distance(first_guard, gt_[first_guard]);
+  };
+  const Scalar slope = (dense_distance(first) - dense_distance(first - w)) / w;
   Scalar stepped_to = first;
   auto step_to = [&](Scalar tau) {
     core_.step(sys_, m, t, x_, f_, tau - t, xe_, fe_, opt_.rtol, opt_.atol, st);
@@ -256,19 +335,37 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
     return monitor_.distance(first_guard, gt_[first_guard]);
   };
   const Scalar d_first = step_to(first);
-  if (d_first >= Scalar(0)) {
-    // The dense output and the re-integrated step disagree (by the dense-output error) on which
-    // side of the guard `first` lies: continue on the step itself, so that the state handed to
-    // the transition has crossed.
-    const auto br = detail::illinois_root(step_to, first, d_first, t1,
-                                          monitor_.distance(first_guard, gb_[first_guard]), tol);
-    if (stepped_to != br.hi) step_to(br.hi);  // (re-stepping to t1 reproduces x1 exactly)
-    first = br.hi;
-    triggered_.clear();
-    for (Eigen::Index i = 0; i < ng; ++i)
-      if (monitor_.crossed(i, gt_[i])) triggered_.push_back(i);
+  Scalar lo = t, d_lo = monitor_.distance(first_guard, ga_[first_guard]);
+  Scalar hi = t1, d_hi = monitor_.distance(first_guard, gb_[first_guard]);
+  auto narrow = [&](Scalar tau, Scalar d) {  // keep [lo, hi] a bracket: d(lo) >= 0 > d(hi)
+    if (d >= Scalar(0)) {
+      lo = tau;
+      d_lo = d;
+    } else {
+      hi = tau;
+      d_hi = d;
+    }
+  };
+  narrow(first, d_first);
+  if (slope < Scalar(0)) {
+    // Bracket the step's root next to first - d_first / slope (a little beyond it, then 4x
+    // wider), so that the root finding starts on a bracket of the size of the offset.
+    const Scalar towards = d_first >= Scalar(0) ? Scalar(1) : Scalar(-1);
+    Scalar reach = std::abs(d_first / slope) * Scalar(1.01) + tol;
+    for (int k = 0; k < 6; ++k, reach *= Scalar(4)) {
+      const Scalar probe = first + towards * reach;
+      if (!(probe > lo && probe < hi)) break;
+      const Scalar d = step_to(probe);
+      narrow(probe, d);
+      if ((d < Scalar(0)) == (towards > Scalar(0))) break;  // the sign changed: [lo, hi] brackets
+    }
   }
-  return first;
+  const auto br = detail::illinois_root(step_to, lo, d_lo, hi, d_hi, tol);
+  if (stepped_to != br.hi) step_to(br.hi);  // (re-stepping to t1 reproduces x1 exactly)
+  triggered_.clear();
+  for (Eigen::Index i = 0; i < ng; ++i)
+    if (monitor_.crossed(i, gt_[i])) triggered_.push_back(i);
+  return br.hi;
 }
 
 template <class System, class Method>
@@ -302,6 +399,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
   if (!(t_end >= t0)) detail::throw_invalid(where, "t_end must be >= t0", t_end);
   if (x0.size() == 0) detail::throw_invalid(where, "x0 must not be empty", x0.size());
   if (!x0.allFinite()) detail::throw_invalid(where, "x0 must be finite", x0.transpose());
+  check_time_resolution(t0, t_end);
 
   Result r;
   StepperStats& st = r.stats;
@@ -331,6 +429,11 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
   bool after_reject = false;  // no step growth right after a rejection
   bool nan_recovery = false;  // RK4: keep the reduced step after a non-finite trial step
   long attempts = 0;
+  // RK4 steps end on the grid grid_t0 + k fixed_step (restarted at each event), and the step
+  // taken is the difference of two grid times: t and x advance by the same h, and t does not
+  // accumulate the rounding of t + h over millions of steps.
+  Scalar grid_t0 = t0;
+  long grid_k = 0;
   using std::pow;
 
   while (t < t_end) {
@@ -338,13 +441,13 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       return finish(r, Status::MaxSteps, t, x_, mode,
                     "max_steps " + std::to_string(opt_.max_steps) + " reached " +
                         detail::at_time(t));
-    h = std::min(h, hmax);
-    Scalar t1 = t + h;
-    if (t_end - t1 <= Scalar(0.01) * h) {
-      t1 = t_end;
-      h = t_end - t;
-    }
     const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t));
+    // An adaptive step below min_step (a small initial step at large |t|) could round t + h to t.
+    h = adaptive_ ? std::min(std::max(h, hmin), hmax) : std::min(h, hmax);
+    const bool on_grid = !adaptive_ && !nan_recovery;
+    Scalar t1 = on_grid ? grid_t0 + static_cast<Scalar>(grid_k + 1) * opt_.fixed_step : t + h;
+    if (t_end - t1 <= Scalar(0.01) * h) t1 = t_end;
+    h = t1 - t;
     ++attempts;
     const Scalar err = core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
     // An infinite error norm of a finite step is a rejection (e.g. atol = 0 on a zero component).
@@ -381,7 +484,10 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
 
     if (guarded_ && monitor_.any_crossed(gb_)) {
       const Scalar te = locate_event(mode, t, h, t1, st);
-      if (!emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_))
+      const bool sampled =
+          event_on_step_ ? emit_samples(obs, mode, t, h, te, x_, f_, x1_, f1_)
+                         : emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_);
+      if (!sampled)
         return finish(r, Status::StoppedByObserver, te, xe_, mode,
                       "stopped by observer " + detail::at_time(te));
       if (!obs.on_step(te, xe_, mode))
@@ -427,6 +533,8 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       if (!adaptive_) {
         h = opt_.fixed_step;
         nan_recovery = false;
+        grid_t0 = t;
+        grid_k = 0;
       }
       continue;
     }
@@ -437,6 +545,12 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     t = t1;
     x_.swap(x1_);
     f_.swap(f1_);
+    if (on_grid) {
+      ++grid_k;
+    } else {
+      grid_t0 = t;  // off the grid after a non-finite trial step: a new grid from here
+      grid_k = 0;
+    }
     if (guarded_) {
       ga_.swap(gb_);
       monitor_.update_arming(ga_);

@@ -16,6 +16,17 @@ enum class EventLocation : std::uint8_t {
   Bisection          ///< halve the step, re-integrating sub-steps from the step start (the paper)
 };
 
+/// Which state an event hands to the transition, once its time is located on the dense output.
+enum class EventState : std::uint8_t {
+  DenseOutput,  ///< the dense output at the located time (no further right-hand-side evaluation)
+  Reintegrate   ///< one step of the method from the step start to the event, its root refined on it
+};
+
+/// Human-readable name of an event-state choice.
+inline const char* to_string(EventState e) noexcept {
+  return e == EventState::Reintegrate ? "reintegrate" : "dense_output";
+}
+
 /// Human-readable name of an event location strategy.
 inline const char* to_string(EventLocation e) noexcept {
   return e == EventLocation::Bisection ? "bisection" : "dense_root_finding";
@@ -27,6 +38,11 @@ inline const char* to_string(EventLocation e) noexcept {
 /// err_i / (atol + rtol * max(|x_i(t)|, |x_i(t+h)|)) is <= 1.
 /// The step fails with Status::StepSizeUnderflow when it would have to go below
 /// `min_step * max(1, |t|)` (relative to |t| for large t, absolute below |t| = 1).
+///
+/// Time resolution: HybridStepper::integrate rejects (std::invalid_argument) an RK4 `fixed_step`
+/// below `min_step * max(1, |t|)` over [t0, t_end] (t + h would not advance t, or only by a few
+/// ulps), an `output_interval` that does not separate sample times at max(|t0|, |t_end|), and more
+/// than `max_samples` samples in [t0, t_end].
 ///
 /// Zeno guard: the run ends with Status::ZenoGuard when more than `zeno_max_events` events fall
 /// inside any window of length `zeno_window`, or when more than `zeno_max_immediate_events`
@@ -43,12 +59,14 @@ struct StepperOptions {
   Scalar max_step = std::numeric_limits<Scalar>::infinity();  ///< largest step (adaptive)
   long max_steps = 100'000'000;        ///< budget of step attempts (accepted + rejected)
   EventLocation event_location = EventLocation::DenseRootFinding;
+  EventState event_state = EventState::Reintegrate;  ///< state at a root-found event (not bisection); see docs/ode.md
   Scalar event_time_tolerance = Scalar(1e-12);  ///< width of the final bracket of an event time
   Scalar guard_zero_tolerance = Scalar(1e-12);  ///< |g| below this at a mode start counts as zero
   long zeno_max_events = 1000;         ///< more events than this inside zeno_window -> ZenoGuard
   Scalar zeno_window = Scalar(1e-6);   ///< length of the sliding window of the event-rate cap
   long zeno_max_immediate_events = 100;  ///< consecutive immediate events allowed
   Scalar output_interval = 0;          ///< > 0: on_sample at t0, t0 + dt, ... via dense output
+  long max_samples = 100'000'000;      ///< largest number of samples a run may ask for
 
   /// Throws std::invalid_argument("<where>: <option> ...") for an option out of range.
   void validate(const std::string& where) const {
@@ -79,6 +97,7 @@ struct StepperOptions {
       detail::throw_invalid(where, "options.zeno_max_immediate_events must be > 0",
                             zeno_max_immediate_events);
     require_non_negative(where, "options.output_interval", output_interval);
+    if (max_samples <= 0) detail::throw_invalid(where, "options.max_samples must be > 0", max_samples);
   }
 };
 
