@@ -8,5 +8,6 @@
 #include "stickslip/beam/frame_element.hpp"
 #include "stickslip/beam/frame_member.hpp"
 #include "stickslip/beam/frame_model.hpp"
+#include "stickslip/beam/ids.hpp"
 #include "stickslip/beam/mass_type.hpp"
 #include "stickslip/beam/section_properties.hpp"

@@ -4,6 +4,7 @@
 /// constrained ones.
 
 #include "stickslip/beam/dof.hpp"
+#include "stickslip/beam/ids.hpp"
 #include "stickslip/detail/validate.hpp"
 
 #include <Eigen/Core>
@@ -44,13 +45,13 @@ class DofMap {
 
   /// Free index of a nodal DOF, -1 when it is constrained.
   /// \throws std::invalid_argument when the node does not exist
-  Index free_index(Index node, Dof dof) const {
+  Index free_index(NodeId node, Dof dof) const {
     check_node(node);
     return free_index_[static_cast<std::size_t>(global_dof(node, dof))];
   }
 
   /// True when the nodal DOF is free. \throws std::invalid_argument for an unknown node
-  bool is_free(Index node, Dof dof) const { return free_index(node, dof) >= 0; }
+  bool is_free(NodeId node, Dof dof) const { return free_index(node, dof) >= 0; }
 
   /// Node and DOF of a free index. \throws std::invalid_argument when out of range
   std::pair<Index, Dof> node_dof(Index free) const {

@@ -8,6 +8,7 @@
 #include "stickslip/beam/dof_map.hpp"
 #include "stickslip/beam/frame_element.hpp"
 #include "stickslip/beam/frame_member.hpp"
+#include "stickslip/beam/ids.hpp"
 #include "stickslip/beam/mass_type.hpp"
 #include "stickslip/beam/section_properties.hpp"
 #include "stickslip/detail/validate.hpp"
@@ -69,7 +70,7 @@ class FrameModel {
   /// \throws std::invalid_argument for non-finite coordinates, or when the node lies within
   ///         coincidence_tolerance * (bounding-box diagonal) of an existing node (the message
   ///         names that node). Cost O(num_nodes()).
-  Index add_node(Scalar x, Scalar y) {
+  NodeId add_node(Scalar x, Scalar y) {
     static const char* where = "FrameModel::add_node";
     detail::require_finite(where, "x", x);
     detail::require_finite(where, "y", y);
@@ -97,7 +98,7 @@ class FrameModel {
   /// elements - 1 interior nodes); returns the member id.
   /// \throws std::invalid_argument for a missing node, node_a == node_b, elements outside
   ///         [1, max_elements_per_member], more than max_nodes nodes in all, or an invalid section
-  Index add_member(Index node_a, Index node_b, const Section& section, Index elements) {
+  MemberId add_member(NodeId node_a, NodeId node_b, const Section& section, Index elements) {
     static const char* where = "FrameModel::add_member";
     check_element_count(where, "elements", elements);
     const Scalar length = checked_length(where, node_a, node_b, section);
@@ -114,7 +115,7 @@ class FrameModel {
   /// \throws std::invalid_argument for a missing node, node_a == node_b, fewer than two stations,
   ///         non-ascending or non-finite stations, wrong end stations, more than
   ///         max_elements_per_member elements or max_nodes nodes, or an invalid section
-  Index add_member(Index node_a, Index node_b, const Section& section, std::vector<Scalar> stations) {
+  MemberId add_member(NodeId node_a, NodeId node_b, const Section& section, std::vector<Scalar> stations) {
     static const char* where = "FrameModel::add_member";
     const Scalar length = checked_length(where, node_a, node_b, section);
     if (stations.size() < 2) detail::throw_invalid(where, "stations.size() must be >= 2", stations.size());
@@ -137,20 +138,20 @@ class FrameModel {
   }
 
   /// Fix all three DOFs of a node (clamped support). \throws std::invalid_argument if missing
-  void clamp(Index node) {
+  void clamp(NodeId node) {
     check_node("FrameModel::clamp", "node", node);
     for (Dof d : {Dof::X, Dof::Y, Dof::Rz}) constrain(node, d);
   }
 
   /// Fix X and Y of a node (pinned support). \throws std::invalid_argument if missing
-  void pin(Index node) {
+  void pin(NodeId node) {
     check_node("FrameModel::pin", "node", node);
     constrain(node, Dof::X);
     constrain(node, Dof::Y);
   }
 
   /// Fix one DOF of a node (e.g. a roller). \throws std::invalid_argument if missing
-  void fix(Index node, Dof dof) {
+  void fix(NodeId node, Dof dof) {
     check_node("FrameModel::fix", "node", node);
     constrain(node, dof);
   }
@@ -158,7 +159,7 @@ class FrameModel {
   /// Add a point mass m [kg] on the X and Y DOFs of a node (accumulates).
   /// \throws std::invalid_argument for a missing node, m non-finite or < 0, or a sum that
   ///         overflows
-  void add_point_mass(Index node, Scalar m) {
+  void add_point_mass(NodeId node, Scalar m) {
     static const char* where = "FrameModel::add_point_mass";
     check_node(where, "node", node);
     detail::require_non_negative(where, "m", m);
@@ -167,7 +168,7 @@ class FrameModel {
 
   /// Add a rotary inertia J [kg m^2] on the Rz DOF of a node (accumulates).
   /// \throws std::invalid_argument for a missing node, J non-finite or < 0, or a sum that overflows
-  void add_rotary_inertia(Index node, Scalar J) {
+  void add_rotary_inertia(NodeId node, Scalar J) {
     static const char* where = "FrameModel::add_rotary_inertia";
     check_node(where, "node", node);
     detail::require_non_negative(where, "J", J);
@@ -176,7 +177,7 @@ class FrameModel {
 
   /// Add a grounded spring k [N/m, or N m/rad for Rz] on one DOF of a node (accumulates).
   /// \throws std::invalid_argument for a missing node, k non-finite or < 0, or a sum that overflows
-  void add_spring(Index node, Dof dof, Scalar k) {
+  void add_spring(NodeId node, Dof dof, Scalar k) {
     static const char* where = "FrameModel::add_spring";
     check_node(where, "node", node);
     detail::require_non_negative(where, "k", k);
@@ -184,7 +185,7 @@ class FrameModel {
   }
 
   /// Member `id`. \throws std::invalid_argument when out of range
-  const Member& member(Index id) const {
+  const Member& member(MemberId id) const {
     if (id < 0 || id >= num_members())
       throw std::invalid_argument("FrameModel::member: id = " + std::to_string(id) +
                                   " does not exist (model has " + std::to_string(num_members()) +
@@ -197,13 +198,13 @@ class FrameModel {
   Index num_elements() const noexcept { return num_elements_; }
 
   /// Position (X, Y) [m] of a node. \throws std::invalid_argument when missing
-  Vector2 node_position(Index node) const {
+  Vector2 node_position(NodeId node) const {
     check_node("FrameModel::node_position", "node", node);
     return positions_[idx(node)];
   }
 
   /// True when the nodal DOF is constrained. \throws std::invalid_argument when missing
-  bool is_constrained(Index node, Dof dof) const {
+  bool is_constrained(NodeId node, Dof dof) const {
     check_node("FrameModel::is_constrained", "node", node);
     return constrained_[idx(global_dof(node, dof))];
   }

@@ -80,7 +80,7 @@ class ModalBasis {
   /// Row of Phi for a nodal DOF: the DOF's value in each mode (zeros when constrained).
   /// O(1), no allocation; the view stays valid while this basis lives.
   /// \throws std::invalid_argument for a node outside the model
-  NodalRow nodal(Index node, Dof dof) const {
+  NodalRow nodal(NodeId node, Dof dof) const {
     const Index f = dofs_.free_index(node, dof);
     if (f < 0) return NodalRow(zero_row_);
     return NodalRow(phi_.row(f));

@@ -296,7 +296,7 @@ class FrictionDampedSystem {
   /// Modal row vector of the displacement of point `eps` of `member` along `direction`
   /// (GlobalX/GlobalY/Axial/Transverse; Moment gives the rotation): displacement = psi . q.
   /// The member must carry a damper or a load; throws std::invalid_argument otherwise.
-  Vector point_shape(Index member, Scalar eps, LoadDirection direction) const {
+  Vector point_shape(MemberId member, Scalar eps, LoadDirection direction) const {
     for (std::size_t s = 0; s < shape_members_.size(); ++s)
       if (shape_members_[s] == member) {
         Load probe;

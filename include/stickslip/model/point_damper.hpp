@@ -2,6 +2,7 @@
 /// \file point_damper.hpp
 /// \brief A point-contact friction damper pressed against a member of a frame.
 
+#include "stickslip/beam/ids.hpp"
 #include "stickslip/contact.hpp"
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/normal_load.hpp"
@@ -28,12 +29,12 @@ using FrictionLawVariant = std::variant<CoulombLaw<Scalar>, StribeckLaw<Scalar>,
 template <class Scalar, class Law = FrictionLawVariant<Scalar>>
 struct PointDamper {
   /// Damper on `member` at contact coordinate X0 with mass m, spring k, preload N0 and `law`.
-  PointDamper(Eigen::Index member_, Scalar contact_coordinate_, Scalar mass_, Scalar stiffness_,
+  PointDamper(MemberId member_, Scalar contact_coordinate_, Scalar mass_, Scalar stiffness_,
               Scalar preload_, Law law_, Scalar share_ = Scalar(0.5))
       : member(member_), contact_coordinate(contact_coordinate_), mass(mass_),
         stiffness(stiffness_), preload(preload_), share(share_), law(std::move(law_)) {}
 
-  Eigen::Index member = 0;       ///< member the damper touches
+  MemberId member = 0;           ///< member the damper touches
   Scalar contact_coordinate{};   ///< initial contact coordinate X0 along the member [m]
   Scalar mass{};                 ///< damper mass m [kg] (> 0)
   Scalar stiffness{};            ///< spring k to the damper's support along u [N/m] (>= 0)
@@ -54,7 +55,7 @@ struct PointDamper {
   Scalar effective_stiffness() const { return share * stiffness; }
 
   /// Damper whose preload comes from the centrifugal force: N0 = s m r Omega^2 (paper section 2).
-  static PointDamper centrifugal(Eigen::Index member, Scalar contact_coordinate, Scalar mass,
+  static PointDamper centrifugal(MemberId member, Scalar contact_coordinate, Scalar mass,
                                  Scalar stiffness, Scalar radius, Scalar spin, Law law,
                                  Scalar share = Scalar(0.5)) {
     detail::require_non_negative("PointDamper::centrifugal", "radius", radius);

@@ -2,6 +2,7 @@
 /// \file point_load.hpp
 /// \brief External point loads on a member: harmonic or a user function of time.
 
+#include "stickslip/beam/ids.hpp"
 #include "stickslip/detail/validate.hpp"
 
 #include <Eigen/Core>
@@ -26,7 +27,7 @@ enum class LoadDirection {
 /// gives F(t) itself.
 template <class Scalar>
 struct PointLoad {
-  Eigen::Index member = 0;
+  MemberId member = 0;  ///< member the load acts on
   Scalar coordinate{};  ///< position along the member [m]
   LoadDirection direction = LoadDirection::GlobalX;
   Scalar amplitude{};   ///< [N] or [N m]
@@ -43,7 +44,7 @@ struct PointLoad {
   }
 
   /// Harmonic load F(t) = amplitude sin(omega t + phase).
-  static PointLoad harmonic(Eigen::Index member, Scalar coordinate, LoadDirection direction,
+  static PointLoad harmonic(MemberId member, Scalar coordinate, LoadDirection direction,
                             Scalar amplitude, Scalar omega, Scalar phase = Scalar(0)) {
     PointLoad p;
     p.member = member;

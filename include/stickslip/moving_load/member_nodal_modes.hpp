@@ -29,7 +29,7 @@ struct MemberNodalModes {
   using StationVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using IndexVector = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1>;
 
-  Eigen::Index member = 0;  ///< member id (used in messages)
+  MemberId member = 0;  ///< member id (used in messages)
   StationVector stations;   ///< local coordinates of the nodes [m]: 0 = s_0 < s_1 < ... < s_ne = L
   Matrix u;                 ///< axial components, nodes x modes [m per unit modal coordinate]
   Matrix w;                 ///< transverse components, nodes x modes
@@ -51,7 +51,7 @@ struct MemberNodalModes {
 ///         since assembly), or when the basis's DOF numbering does not match the model's nodes
 ///         and constraints
 template <class Scalar>
-MemberNodalModes<Scalar> member_nodal_modes(const FrameModel<Scalar>& model, Eigen::Index member,
+MemberNodalModes<Scalar> member_nodal_modes(const FrameModel<Scalar>& model, MemberId member,
                                             const ModalBasis<Scalar>& basis,
                                             const std::string& where = "member_nodal_modes") {
   if (member < 0 || member >= model.num_members())

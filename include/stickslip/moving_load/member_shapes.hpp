@@ -95,7 +95,7 @@ class MemberShapes {
   /// extracted and rotated to local axes by member_nodal_modes). Keeps no reference to either.
   /// \throws std::invalid_argument when the member is not in the model, the basis does not belong
   ///         to the model or its DOF count differs, or a fixed Modes differs from basis.size()
-  MemberShapes(const FrameModel<Scalar>& model, Eigen::Index member,
+  MemberShapes(const FrameModel<Scalar>& model, MemberId member,
                const ModalBasis<Scalar>& basis, EndPolicy policy = EndPolicy::Throw)
       : MemberShapes(member_nodal_modes(model, member, basis, "MemberShapes"), policy) {}
 
@@ -247,7 +247,7 @@ class MemberShapes {
   }
 
   Scalar length() const noexcept { return stations_(stations_.size() - 1); }  ///< L [m]
-  Eigen::Index member() const noexcept { return member_; }                    ///< member id
+  MemberId member() const noexcept { return member_; }                    ///< member id
   Eigen::Index num_modes() const noexcept { return nodal_.rows(); }           ///< n
   Eigen::Index num_elements() const noexcept { return element_lengths_.size(); }  ///< n_e
   EndPolicy end_policy() const noexcept { return policy_; }
@@ -379,7 +379,7 @@ class MemberShapes {
     }
   }
 
-  Eigen::Index member_;
+  MemberId member_;
   EndPolicy policy_;
   Scalar cos_, sin_;
   typename NodalModes::IndexVector free_dofs_;
