@@ -47,13 +47,13 @@ inline BladePlatformFrame blade_platform_frame() {
   return f;
 }
 
-/// Expect `statement` to throw std::runtime_error whose what() contains `fragment`.
-#define EXPECT_RUNTIME_ERROR(statement, fragment)                                             \
+/// Expect `statement` to throw std::domain_error whose what() contains `fragment`.
+#define EXPECT_DOMAIN_ERROR(statement, fragment)                                             \
   do {                                                                                        \
     try {                                                                                     \
       statement;                                                                              \
-      ADD_FAILURE() << "expected std::runtime_error from: " #statement;                       \
-    } catch (const std::runtime_error& e) {                                                   \
+      ADD_FAILURE() << "expected std::domain_error from: " #statement;                       \
+    } catch (const std::domain_error& e) {                                                   \
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos)                      \
           << "message \"" << e.what() << "\" lacks \"" << (fragment) << "\"";                  \
     }                                                                                         \

@@ -46,7 +46,7 @@ void expect_success_and_checks(const Outcome& o, double relative_residual, doubl
   EXPECT_LE(o.relative_residual(), relative_residual);
   // Same round-off / event-location bounds as in parameter_extremes_test.cpp.
   EXPECT_LE(o.max_stuck_V, 1e-10);
-  EXPECT_LE(o.max_capacity_excess, std::max(1e-7, 10.0 * rtol));
+  EXPECT_LE(o.max_capacity_excess, capacity_excess_bound(o, rtol));
   EXPECT_LE(o.max_wrong_slip_V, 1e-11 * o.max_slip_Vdot + 1e-15);
 }
 

@@ -42,6 +42,10 @@ struct Outcome {
   double energy_scale = 0;      ///< largest |term| of the balance over the run [J]
   double max_stuck_V = 0;       ///< largest |x' - q'^T psi_u(X)| of a stuck damper [m/s]
   double max_capacity_excess = 0;  ///< largest |f| - mu_s N of a stuck damper [N]
+  /// Largest rate of the stick margin mu_s N - |f| of a stuck damper between consecutive checks
+  /// [N/s] (a lower bound of its peak rate): an event is located to the event-time tolerance, so
+  /// the state handed over is past the capacity by at most this rate times that tolerance.
+  double max_stick_margin_rate = 0;
   double max_wrong_slip_V = 0;  ///< largest sliding speed against the slip state's sign [m/s]
   double max_slip_V = 0;        ///< largest |V| while slipping [m/s]
   double max_slip_Vdot = 0;     ///< largest |V'| while slipping [m/s^2]
@@ -78,13 +82,20 @@ class Checker : public NullObserver {
       const auto& d = sys_.dampers()[static_cast<std::size_t>(i)];
       const double N = e.N[i], f = e.f[i];
       out_.min_N = std::min(out_.min_N, N);
+      if (mode[i] != ContactState::Stick) last_margin_.erase(i);
       if (mode[i] == ContactState::Stick) {
         const double X = e.X[i];
         auto v = shapes_.at(d.member)->evaluate(X);
         const double V = x[sys_.xd_offset() + i] - x.segment(n, n).dot(v.psi_u);
         out_.max_stuck_V = std::max(out_.max_stuck_V, std::abs(V));
         const double mu_s = std::get<CoulombLaw<double>>(d.law).mu_s();
-        out_.max_capacity_excess = std::max(out_.max_capacity_excess, std::abs(f) - mu_s * N);
+        const double margin = mu_s * N - std::abs(f);
+        out_.max_capacity_excess = std::max(out_.max_capacity_excess, -margin);
+        const auto prev = last_margin_.find(i);
+        if (prev != last_margin_.end() && prev->second.first < t)  // stuck at the previous check too
+          out_.max_stick_margin_rate = std::max(out_.max_stick_margin_rate,
+                                                std::abs(margin - prev->second.second) / (t - prev->second.first));
+        last_margin_[i] = {t, margin};
       } else {
         const double sign = mode[i] == ContactState::SlipPositive ? 1.0 : -1.0;
         out_.max_slip_V = std::max(out_.max_slip_V, std::abs(e.V[i]));
@@ -111,7 +122,16 @@ class Checker : public NullObserver {
   double E0_;
   Outcome& out_;
   std::map<Index, std::unique_ptr<MemberShapes<double>>> shapes_;
+  std::map<Index, std::pair<double, double>> last_margin_;  // damper -> (t, stick margin) while stuck
 };
+
+/// Bound on the capacity excess of a stuck damper at an accepted step: 1e-7 N, 10 N x rtol (a
+/// fresh step's local error in the contact forces), or 10 x (event-time tolerance 1e-12 s) x the
+/// measured rate of the stick margin (the located state is past the switching surface by at most
+/// the margin's rate times the event-time tolerance; 10 covers the peak rate between checks).
+inline double capacity_excess_bound(const Outcome& o, double rtol = 0) {
+  return std::max({1e-7, 10.0 * rtol, 10.0 * 1e-12 * o.max_stick_margin_rate});
+}
 
 /// Runs `sys` from `x0` (default: rest) in its requested mode, made consistent, to t_end.
 /// The run goes on even when make_consistent fails (consistent_start records it), so that a test
@@ -180,10 +200,10 @@ inline std::string describe(const Outcome& o) {
   char buf[512];
   std::snprintf(buf, sizeof buf,
                 " t=%.6g steps=%ld rejected=%ld events=%ld rel.residual=%.3g scale=%.3g J "
-                "stuck|V|=%.3g capacity excess=%.3g N wrong-sign V=%.3g (|V|<=%.3g, |V'|<=%.3g) "
+                "stuck|V|=%.3g capacity excess=%.3g N (margin rate %.3g N/s) wrong-sign V=%.3g (|V|<=%.3g, |V'|<=%.3g) "
                 "min N=%.6g",
                 o.t, o.stats.accepted_steps, o.stats.rejected_steps, o.contact_events,
-                o.relative_residual(), o.energy_scale, o.max_stuck_V, o.max_capacity_excess,
+                o.relative_residual(), o.energy_scale, o.max_stuck_V, o.max_capacity_excess, o.max_stick_margin_rate,
                 o.max_wrong_slip_V, o.max_slip_V, o.max_slip_Vdot, o.min_N);
   return std::string(to_string(o.status)) + (o.threw ? " (threw)" : "") + buf + " message='" +
          o.message + "'";

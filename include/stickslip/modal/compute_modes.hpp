@@ -307,7 +307,7 @@ RawModes<Scalar> sparse_modes(const AssembledFrame<Scalar>& frame, const ModalOp
 /// \throws std::invalid_argument for invalid options, num_modes > number of free DOFs, a
 ///         Sparse request with num_modes >= number of free DOFs, or when no mode has
 ///         omega <= max_omega
-/// \throws std::runtime_error naming the cause when the modes fail the checks (or Lanczos fails)
+/// \throws std::domain_error naming the cause when the modes fail the checks (or Lanczos fails)
 ///         and no (further) fallback is possible
 template <class Scalar>
 ModalBasis<Scalar> compute_modes(const AssembledFrame<Scalar>& frame,
@@ -364,7 +364,7 @@ ModalBasis<Scalar> compute_modes(const AssembledFrame<Scalar>& frame,
   detail::RawModes<Scalar> raw = solve_and_check(solver, check);
   if (!check.failure.empty() && solver == ModalSolver::Sparse) {
     if (n > options.dense_fallback_limit)
-      throw std::runtime_error(std::string(where) + ": the sparse solver failed: " + check.failure +
+      throw std::domain_error(std::string(where) + ": the sparse solver failed: " + check.failure +
                                "; no dense fallback for " + std::to_string(n) +
                                " free DOFs > options.dense_fallback_limit = " +
                                std::to_string(options.dense_fallback_limit));
@@ -376,7 +376,7 @@ ModalBasis<Scalar> compute_modes(const AssembledFrame<Scalar>& frame,
   }
   if (report) *report = local_report;
   if (!check.failure.empty())
-    throw std::runtime_error(std::string(where) + ": the dense solver failed: " + check.failure +
+    throw std::domain_error(std::string(where) + ": the dense solver failed: " + check.failure +
                              (local_report.fallback_reason.empty()
                                   ? std::string()
                                   : " (after the sparse solver failed: " + local_report.fallback_reason + ")"));

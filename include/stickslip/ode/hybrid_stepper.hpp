@@ -362,9 +362,13 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
   }
   const auto br = detail::illinois_root(step_to, lo, d_lo, hi, d_hi, tol);
   if (stepped_to != br.hi) step_to(br.hi);  // (re-stepping to t1 reproduces x1 exactly)
+  // Fired: every guard crossed at the handed state, and every guard whose dense-output root lies
+  // within the event time tolerance of the first one (guards that cross together, such as those
+  // of two mirror-image contacts, fire together although round-off leaves one of them a hair
+  // short of zero at the refined time).
   triggered_.clear();
   for (Eigen::Index i = 0; i < ng; ++i)
-    if (monitor_.crossed(i, gt_[i])) triggered_.push_back(i);
+    if (monitor_.crossed(i, gt_[i]) || roots_[i] <= first + tol) triggered_.push_back(i);
   return br.hi;
 }
 
