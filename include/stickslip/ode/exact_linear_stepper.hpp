@@ -230,6 +230,8 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
   delta_ = rate > 0 ? two_pi / (Scalar(samples_per_period) * rate)
                     : std::numeric_limits<Scalar>::infinity();
   delta_ = std::min(delta_, opt_.max_step);
+  // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
+  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_);
   lawson_.initialize(flow_.dim());
   for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_}) v->resize(flow_.dim());
   if (!exact_ && (force || changed)) return remainder(m, t, y_, r_, st);
@@ -514,8 +516,8 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
         t1 = t_end;
         hs = t_end - t_;
       }
-      if (hs == delta_) {
-        y1_.noalias() = flow_.propagator(delta_, work_) * y_;
+      if (hs == delta_ && flow_.has_ladder()) {
+        y1_.noalias() = flow_.propagator() * y_;
         ++work_.matvecs;
       } else {
         y1_ = y_;

@@ -14,6 +14,7 @@
 /// including a harmonic at a resonance of A, are then part of exp(Â tau): no particular-solution
 /// special cases.
 
+#include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/linear_part.hpp>
 
 #include <Eigen/Core>
@@ -23,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace stickslip {
 
@@ -68,7 +70,7 @@ class AugmentedFlow {
     const bool same = a_.rows() == dim && a_ == build_;
     if (!same) {
       a_.swap(build_);
-      have_phi_ = false;
+      ladder_k_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
     }
     const bool rate_stale = !rate_valid_ || version_ != lp.version || n_ != n;
@@ -122,57 +124,111 @@ class AugmentedFlow {
     }
   }
 
-  /// out = (Â y) restricted to the state rows.
+  /// out[0 .. nx) = (Â y) restricted to the state rows (out may be longer).
   template <class Out>
   void rate(const Vector& y, Out& out, ExactStepperStats& st) const {
-    out.noalias() = a_.topRows(nx_) * y;
+    STICKSLIP_ASSERT(out.size() >= nx_ && y.size() == dim());
+    out.head(nx_).noalias() = a_.topRows(nx_) * y;
     ++st.matvecs;
   }
 
-  /// v <- exp(Â tau) v, tau >= 0: s sub-steps with ||Â||_1 tau / s <= 1, each a Taylor series
-  /// summed until the term is below the unit round-off relative to the sum.
-  void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
-    if (!(tau > 0)) return;
-    using std::ceil;
-    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
-    const Scalar s_real = std::max(Scalar(1), ceil(norm1_ * tau));
-    const long s = static_cast<long>(s_real);
-    const Scalar dt = tau / s_real;
-    for (long i = 0; i < s; ++i) {
-      term_ = v;  // v accumulates the sum of the series
-      for (int k = 1; k <= 40; ++k) {
-        prod_.noalias() = a_ * term_;
-        ++st.matvecs;
-        term_ = (dt / Scalar(k)) * prod_;
-        v += term_;
-        if (term_.template lpNorm<Eigen::Infinity>() <=
-            eps * v.template lpNorm<Eigen::Infinity>())
-          break;
-      }
+  /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
+  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
+  /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
+  /// while Â and base do not change.
+  void prepare(Scalar base, ExactStepperStats& st) {
+    if (!(base > 0) || !std::isfinite(base) || !(norm1_ > 0)) {
+      ladder_k_ = -1;
+      return;
     }
-  }
-
-  /// exp(Â delta), computed (Padé with scaling and squaring) once per (Â, delta).
-  const Matrix& propagator(Scalar delta, ExactStepperStats& st) {
-    if (!have_phi_ || delta != phi_delta_) {
-      build_ = a_ * delta;
-      phi_ = build_.exp();
-      phi_delta_ = delta;
-      have_phi_ = true;
+    if (ladder_k_ >= 0 && base == base_) return;
+    using std::ceil;
+    using std::log2;
+    const int K = std::max(0, static_cast<int>(ceil(log2(Scalar(2) * norm1_ * base))));
+    ladder_.resize(static_cast<std::size_t>(K) + 1);
+    build_ = a_ * (base / std::pow(Scalar(2), Scalar(K)));
+    ladder_[static_cast<std::size_t>(K)] = build_.exp();
+    ++st.propagator_exponentials;
+    for (int k = K; k > 1; --k) {
+      const auto ku = static_cast<std::size_t>(k);
+      ladder_[ku - 1].noalias() = ladder_[ku] * ladder_[ku];
+    }
+    if (K > 0) {  // the grid propagator, used most, directly (no round-off of K squarings)
+      build_ = a_ * base;
+      ladder_[0] = build_.exp();
       ++st.propagator_exponentials;
     }
-    return phi_;
+    base_ = base;
+    ladder_k_ = K;
+  }
+
+  /// True when prepare() built a ladder (Â != 0 and a finite base).
+  bool has_ladder() const noexcept { return ladder_k_ >= 0; }
+
+  /// exp(Â base) of the ladder (prepare() first).
+  const Matrix& propagator() const {
+    STICKSLIP_ASSERT(ladder_k_ >= 0 && "AugmentedFlow: prepare() first");
+    return ladder_[0];
+  }
+
+  /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
+  /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
+  /// without a ladder, s Taylor sub-steps with ||Â||_1 tau / s <= 1.
+  void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
+    if (!(tau > 0) || !(norm1_ > 0)) return;
+    if (ladder_k_ >= 0) {
+      using std::floor;
+      const Scalar whole = floor(tau / base_);
+      for (long i = 0; i < static_cast<long>(whole); ++i) apply(ladder_[0], v, st);
+      Scalar rest = tau - whole * base_;
+      Scalar step = base_;
+      for (int k = 1; k <= ladder_k_; ++k) {
+        step /= Scalar(2);
+        if (rest >= step) {
+          apply(ladder_[static_cast<std::size_t>(k)], v, st);
+          rest -= step;
+        }
+      }
+      taylor(rest, v, st);
+      return;
+    }
+    using std::ceil;
+    const Scalar s_real = std::max(Scalar(1), ceil(norm1_ * tau));
+    const Scalar dt = tau / s_real;
+    for (long i = 0; i < static_cast<long>(s_real); ++i) taylor(dt, v, st);
   }
 
  private:
-  Matrix a_, build_, phi_;
+  void apply(const Matrix& phi, Vector& v, ExactStepperStats& st) {
+    prod_.noalias() = phi * v;
+    v.swap(prod_);
+    ++st.matvecs;
+  }
+  // v <- sum_k (Â dt)^k / k! v until the term is below the unit round-off relative to the sum.
+  void taylor(Scalar dt, Vector& v, ExactStepperStats& st) {
+    if (!(dt > 0)) return;
+    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    term_ = v;
+    for (int k = 1; k <= 40; ++k) {
+      prod_.noalias() = a_ * term_;
+      ++st.matvecs;
+      term_ = (dt / Scalar(k)) * prod_;
+      v += term_;
+      if (term_.template lpNorm<Eigen::Infinity>() <= eps * v.template lpNorm<Eigen::Infinity>())
+        break;
+    }
+  }
+
+  Matrix a_, build_;
+  std::vector<Matrix> ladder_;
   Vector term_, prod_;
   std::vector<Scalar> omega_;
   Eigen::EigenSolver<Matrix> eig_;
   Eigen::Index nx_ = 0, n_ = 0;
-  Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, phi_delta_ = 0;
+  Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
+  int ladder_k_ = -1;  // -1: no ladder
   std::uint64_t version_ = 0;
-  bool rate_valid_ = false, have_phi_ = false;
+  bool rate_valid_ = false;
 };
 
 }  // namespace detail
