@@ -60,7 +60,7 @@ Usage: blade_damper [options]
   --platform-elements n  elements on the platform, even (default 8)
   --y0 Y                 excitation point above the root [m] (default 0.05)
   --damping z            modal damping ratio of every mode (default 0)
-  --integrator name      rk4 | dopri5 | rosenbrock23 (default dopri5)
+  --integrator name      rk4 | dopri5 | rosenbrock23 | exponential (default dopri5)
   --rtol r --atol a      tolerances of the adaptive integrators (default 1e-7, 1e-10)
   --dt h                 RK4 step [s] (default 1e-4, the paper's)
   --events name          root | bisection (event location; default root)

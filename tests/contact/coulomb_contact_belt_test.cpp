@@ -12,6 +12,7 @@
 //   t_stick = 2 d / v_b,   period T = t_stick + t_slip.
 // (mu_k = 0 is included: x_k = 0, d = mu_s N / k.)
 
+#include "contact/belt_cycle.hpp"
 #include "contact/single_dof_systems.hpp"
 
 #include <gtest/gtest.h>
@@ -23,6 +24,8 @@
 namespace contact_coulomb_contact_belt_test {  // named: the contact test files share one (unity) translation unit
 namespace {
 
+using contact_test::BeltCase;
+using contact_test::BeltCycle;
 using contact_test::EventLog;
 using contact_test::SingleDofOscillator;
 using contact_test::SingleDofParameters;
@@ -31,21 +34,6 @@ using Law = stickslip::CoulombLaw<double>;
 using Belt = SingleDofOscillator<Law>;
 constexpr double kPi = 3.14159265358979323846;
 
-struct BeltCase {
-  double mu_s, mu_k, belt_speed;
-};
-
-struct BeltCycle {
-  double x_k, d, A, t_slip, t_stick;
-  BeltCycle(double m, double k, double N, const BeltCase& c) {
-    const double w = std::sqrt(k / m);
-    x_k = c.mu_k * N / k;
-    d = (c.mu_s - c.mu_k) * N / k;
-    A = std::sqrt(d * d + std::pow(c.belt_speed / w, 2));
-    t_slip = (kPi + 2 * std::atan(c.belt_speed / (w * d))) / w;
-    t_stick = 2 * d / c.belt_speed;
-  }
-};
 
 // Records events and the slip amplitude invariant sqrt((x - x_k)^2 + (x'/w)^2) at every step.
 struct BeltLog : EventLog {

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace contact_test {
@@ -88,6 +89,41 @@ class SingleDofOscillator {
     const double f = friction_force(m, t, x);
     dxdt[1] = (F + f - p_.stiffness * x[0]) / p_.mass;
     dxdt[3] = -f * sliding_velocity(x);
+  }
+
+  // The piecewise-linear form (stickslip/ode/linear_part.hpp) of an exact law with a constant
+  // normal force and no force ramp; x_L = (x, x'), quadratures (W, D). Stick: x' = v_belt,
+  // x'' = 0. Slip: m x'' = F_b + F_0 cos(omega t + phase) + f_k - k x, with the kinetic force
+  // f_k of the slip direction, frozen at (t, x): exact for CoulombLaw (constant mu_k); for other
+  // exact laws (mu_k(|v|)) the remainder is the change of f_k, and `exact` is false. False for
+  // regularised laws, a force ramp, a varying normal force and lift-off.
+  bool linear_part(const Mode& m, double t, const State& x,
+                   stickslip::LinearPart<double>& lp) const {
+    if (!Contact::has_stick_state || p_.force_rate != 0 || p_.normal_amplitude != 0 ||
+        m == Mode::LiftOff)
+      return false;
+    const Eigen::Index nk = p_.force_amplitude != 0 ? 1 : 0;
+    lp.A.setZero(2, 2);
+    lp.b0.setZero(2);
+    lp.omega.assign(static_cast<std::size_t>(nk), p_.force_frequency);
+    lp.bc.setZero(2, nk);
+    lp.bs.setZero(2, nk);
+    lp.Gx.resize(0, 0);
+    lp.exact = true;
+    if (m == Mode::Stick) {
+      lp.b0[0] = p_.belt_speed;
+      lp.version = 1;
+      return true;
+    }
+    lp.A << 0, 1, -p_.stiffness / p_.mass, 0;
+    lp.b0[1] = (p_.force_bias + friction_force(m, t, x)) / p_.mass;
+    if (nk > 0) {  // cos(w t + phase) = cos(phase) cos(w t) - sin(phase) sin(w t)
+      lp.bc(1, 0) = p_.force_amplitude * std::cos(p_.force_phase) / p_.mass;
+      lp.bs(1, 0) = -p_.force_amplitude * std::sin(p_.force_phase) / p_.mass;
+    }
+    lp.exact = std::is_same_v<Law, stickslip::CoulombLaw<double>>;
+    lp.version = lp.exact ? (m == Mode::SlipPositive ? 2 : 3) : lp.version + 2;
+    return true;
   }
 
   Eigen::Index num_guards(const Mode& m) const {

@@ -176,3 +176,45 @@ TEST(ModelAllocation, RunThroughSwitchesAllocatesNothingInsideRhs) {
 }
 
 }  // namespace
+
+namespace linear_part_allocation {
+
+using namespace stickslip;
+using System = FrictionDampedSystem<double>;
+using Index = Eigen::Index;
+
+// FrictionDampedSystem::linear_part (issue #19) allocates nothing once the LinearPart has the
+// mode's sizes: in an exact mode (both dampers stuck, moving contact) at new states, at a moved
+// X (a new key: the probes run again) and repeated (the kept result is copied), and in a mode that
+// is not exact (one damper slipping at a moving contact: probes and the remainder correction at
+// every call). Two loads at distinct frequencies, so that the harmonic columns exist.
+TEST(ModelAllocation, LinearPartAllocatesNothingOnceSized) {
+  Scene s = t_frame(6);
+  std::vector<PointDamper<double>> d;
+  d.emplace_back(s.platform, 0.01, 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+  d.emplace_back(s.platform, 0.03, 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3), 0.5);
+  std::vector<PointLoad<double>> loads{
+      PointLoad<double>::harmonic(s.blade, 0.05, LoadDirection::GlobalX, 20.0, 200.0),
+      PointLoad<double>::harmonic(s.blade, 0.15, LoadDirection::GlobalX, 5.0, 310.0, 0.3)};
+  System sys(s.frame, s.basis, d, loads);
+  System::Mode stuck(2, ContactState::Stick), slipping(2, ContactState::Stick);
+  slipping[0] = ContactState::SlipPositive;
+  System::State x = sys.initial_state();
+  LinearPart<double> lp_stuck, lp_slip;
+  ASSERT_TRUE(sys.linear_part(stuck, 0.0, x, lp_stuck));   // sizes the system's probe vectors
+  ASSERT_TRUE(sys.linear_part(slipping, 0.0, x, lp_slip));  // and each LinearPart
+  const long before = g_allocations.load();
+  for (int rep = 0; rep < 10; ++rep) {
+    x[rep % 4] += 1e-6;
+    const double t = 1e-4 * rep;
+    ASSERT_TRUE(sys.linear_part(stuck, t, x, lp_stuck));    // same key: the kept result
+    x[sys.contact_offset() + 1] += 1e-5;
+    ASSERT_TRUE(sys.linear_part(stuck, t, x, lp_stuck));    // new key: probes
+    ASSERT_TRUE(sys.linear_part(slipping, t, x, lp_slip));  // not exact: probes + correction
+  }
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_TRUE(lp_stuck.exact);
+  EXPECT_FALSE(lp_slip.exact);
+}
+
+}  // namespace linear_part_allocation

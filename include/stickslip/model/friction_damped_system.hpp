@@ -15,6 +15,7 @@
 #include "stickslip/model/point_load.hpp"
 #include "stickslip/moving_load.hpp"
 #include "stickslip/ode/hybrid_system.hpp"
+#include "stickslip/ode/linear_part.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -22,6 +23,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -346,11 +348,7 @@ class FrictionDampedSystem {
   void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt) {
     const Evaluation& e = evaluate(mode, t, x);
     dxdt.resize(x.size());
-    dxdt.template segment<Modes>(0, n_) = x.template segment<Modes>(n_, n_);
-    dxdt.template segment<Modes>(n_, n_) = modal(e.qdd);
-    dxdt.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
-    dxdt.segment(xd_offset(), D_) = e.xdd;
-    if (options_.moving_contact) dxdt.segment(contact_offset(), D_) = e.V;
+    linear_derivative(e, x, dxdt);
     if (options_.energy_audit) {
       const auto qd = x.template segment<Modes>(n_, n_);
       Scalar p_ext = 0;
@@ -374,22 +372,7 @@ class FrictionDampedSystem {
   void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g) {
     const Evaluation& e = evaluate(mode, t, x);
     g.resize(num_guards(mode));
-    Index k = 0;
-    for (Index i = 0; i < D_; ++i) {
-      const std::size_t iu = static_cast<std::size_t>(i);
-      const Index nc = contact_guards_of(mode, i);
-      if (nc > 0)
-        detail::with_law(dampers_[iu].law, [&](const auto& law) {
-          CoulombContact<std::decay_t<decltype(law)>> contact(law);
-          contact.guards(mode[i], e.V[i], e.N[i], e.f[i], watch_lift_off(i), g.data() + k);
-        });
-      k += nc;
-      if (end_guards_of(mode, i)) {
-        const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
-        g[k++] = e.X[i];
-        g[k++] = L - e.X[i];
-      }
-    }
+    fill_guards(mode, e, g.data());
   }
 
   CrossingDirection guard_direction(const Mode& mode, Index idx) const {
@@ -525,6 +508,77 @@ class FrictionDampedSystem {
     return b;
   }
 
+  // ---- linear part per discrete mode (issue #19; docs/model.md, "Linear part per discrete mode")
+  /// Number of linear components of linear_part(): the state without the energy-audit integrals,
+  /// which are quadratures (their rates depend on t and the other components only).
+  Index linear_size() const noexcept { return state_size() - (options_.energy_audit ? 4 : 0); }
+
+  /// The linear part of mode `mode` at (t, x) (stickslip/ode/linear_part.hpp):
+  ///   x_L' = A_m x_L + b_m(t) + r_m(t, x),   x_L = (q, q', x_d, x_d', X)  (linear_size()),
+  /// with the contact coordinates frozen at the state's X (X0 without a moving contact): the X
+  /// columns of A_m are zero. b_m = b0 + sum_k (bc_k cos w_k t + bs_k sin w_k t) holds the
+  /// preloads N0 and the harmonic loads (F = a sin(w t + phi) + offset). Exact (r_m = 0) when no
+  /// load has a time_function and every damper sticks, or slips at a fixed contact under a
+  /// CoulombLaw. Otherwise (exact = false) A_m is the fixed-contact form at the frozen X with the
+  /// slip coefficients frozen at mu(V) of x (convective terms, slope coupling, the motion of X
+  /// and time_function loads left to r_m), and b0 is corrected so that r_m(t, x) = 0. Affine
+  /// guards (the rows of guards(), Gx x_L + g(t)) in exact modes, none otherwise. `version`
+  /// changes when the mode, a frozen X or a frozen slip coefficient changes. Returns false when
+  /// the evaluation at (t, x) is not finite. Allocates nothing once lp has the sizes of the mode
+  /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
+  bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp) {
+    if (x.size() != state_size())
+      detail::throw_invalid("FrictionDampedSystem::linear_part", "x must have state_size() entries, size", x.size());
+    if (mode.size() != D_)
+      detail::throw_invalid("FrictionDampedSystem::linear_part", "mode must hold one state per damper, size",
+                            mode.size());
+    const Evaluation& e = evaluate(mode, t, x);
+    if (!e.finite) return false;
+    if (lp_xs_.size() != state_size()) allocate_linear_part_workspace();
+    using std::isnan;
+    bool exact = true, moving_slip = false;
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+      lp_X_[i] = e.X[i];
+      lp_mu_[i] = stuck ? Scalar(0) : slip_coefficient(i, mode[i], e.V[i]);
+      if (stuck) continue;
+      moving_slip = moving_slip || options_.moving_contact;
+      exact = exact && !options_.moving_contact && !isnan(kinetic_constant_[iu]);
+    }
+    for (const Load& l : loads_) exact = exact && !l.time_function;
+
+    const bool same = lp_key_valid_ && mode == lp_mode_ && lp_X_ == lp_key_X_ && lp_mu_ == lp_key_mu_;
+    if (!same) {
+      ++lp_version_;
+      lp_mode_ = mode;
+      lp_key_X_ = lp_X_;
+      lp_key_mu_ = lp_mu_;
+      lp_key_valid_ = true;
+      lp_cached_ = false;
+    }
+    if (lp_cached_) {  // an exact mode depends on its key only
+      lp = lp_cache_;
+      return true;
+    }
+    linear_part_by_probes(mode, exact, moving_slip, lp);
+    lp.exact = exact;
+    lp.version = lp_version_;
+    if (exact) {
+      lp_cache_ = lp;
+      lp_cached_ = true;
+      return true;
+    }
+    // r_m(t, x) = f(t, x) - A x_L - b(t) into b0, so that the remainder vanishes at x.
+    const Evaluation& ex = evaluate(mode, t, x);
+    linear_derivative(ex, x, lp_f_);
+    lp.load(t, lp_b_);
+    lp_f_ -= lp_b_;
+    lp_f_.noalias() -= lp.A * x.head(linear_size());
+    lp.b0 += lp_f_;
+    return true;
+  }
+
 
  private:
   // Number of guards of damper i in mode: contact guards (from the contact component, incl.
@@ -545,6 +599,38 @@ class FrictionDampedSystem {
   }
   Index guards_of(const Mode& mode, Index i) const {
     return contact_guards_of(mode, i) + (end_guards_of(mode, i) ? 2 : 0);
+  }
+
+  /// The guards of `mode` from an evaluation, into g[0 .. num_guards(mode)): per damper its
+  /// contact guards (CoulombContact::guards), then X and L - X when end_guards_of.
+  void fill_guards(const Mode& mode, const Evaluation& e, Scalar* g) const {
+    Index k = 0;
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const Index nc = contact_guards_of(mode, i);
+      if (nc > 0)
+        detail::with_law(dampers_[iu].law, [&](const auto& law) {
+          CoulombContact<std::decay_t<decltype(law)>> contact(law);
+          contact.guards(mode[i], e.V[i], e.N[i], e.f[i], watch_lift_off(i), g + k);
+        });
+      k += nc;
+      if (end_guards_of(mode, i)) {
+        const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+        g[k++] = e.X[i];
+        g[k++] = L - e.X[i];
+      }
+    }
+  }
+
+  /// Derivative of the state's first linear_size() components from an evaluation:
+  /// (q', q'', x_d', x_d'', V) - the X' = V rows only with a moving contact.
+  template <class Out>
+  void linear_derivative(const Evaluation& e, const State& x, Out& d) const {
+    d.template segment<Modes>(0, n_) = x.template segment<Modes>(n_, n_);
+    d.template segment<Modes>(n_, n_) = modal(e.qdd);
+    d.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
+    d.segment(xd_offset(), D_) = e.xdd;
+    if (options_.moving_contact) d.segment(contact_offset(), D_) = e.V;
   }
 
   Vector load_vector(std::size_t shape, const Load& load) const {
@@ -618,6 +704,94 @@ class FrictionDampedSystem {
     dpsi_w_.col(i) = side * v.dpsi_w;
   }
 
+  // ---- linear part per discrete mode: helpers -----------------------------------------------
+  void allocate_linear_part_workspace() {
+    lp_xs_.setZero(state_size());
+    for (Vector* v : {&lp_f_, &lp_b_}) v->setZero(linear_size());
+    for (Vector* v : {&lp_X_, &lp_mu_, &lp_key_X_, &lp_key_mu_}) v->setZero(D_);
+    lp_g_.setZero(D_ * (CoulombContact<CoulombLaw<Scalar>>::max_guards + 2));
+    lp_preload_.assign(static_cast<std::size_t>(D_), Scalar(0));
+  }
+
+  /// A_m, b_m and (exact modes without end guards) the affine guards of `mode` by probing the
+  /// frozen solve (solve_forces<true>: X = lp_X_, mu = lp_mu_), which is affine in x_L, N0 and the
+  /// load values: b0 at x_L = 0; with the preloads set to zero, column j of A_m at x_L = e_j
+  /// and load l's response at unit load (no differences, so nothing cancels). Each probe reuses
+  /// the factorisation of the frozen matrix, which is refactorised at the first probe when a
+  /// slipping contact moves (its rows are otherwise formed in element space) and after the last.
+  void linear_part_by_probes(const Mode& mode, bool exact, bool moving_slip, LinearPart<Scalar>& lp) {
+    using std::cos;
+    using std::sin;
+    using std::abs;
+    const Index P = linear_size(), probed = 2 * n_ + 2 * D_;  // X columns: zero (X frozen)
+    bool end_guards = false;
+    for (Index i = 0; i < D_; ++i) end_guards = end_guards || end_guards_of(mode, i);
+    const Index G = exact && !end_guards ? num_guards(mode) : 0;
+    lp.omega.clear();
+    for (const Load& l : loads_)
+      if (!l.time_function && l.omega != Scalar(0) &&
+          std::find(lp.omega.begin(), lp.omega.end(), abs(l.omega)) == lp.omega.end())
+        lp.omega.push_back(abs(l.omega));
+    const Index K = static_cast<Index>(lp.omega.size());
+    lp.A.setZero(P, P);
+    lp.bc.setZero(P, K);
+    lp.bs.setZero(P, K);
+    lp.Gx.setZero(G, G > 0 ? P : 0);
+    lp.gc.setZero(G, K);
+    lp.gs.setZero(G, K);
+
+    const bool refine = options_.refine_stale_factorisation;
+    options_.refine_stale_factorisation = false;  // a direct solve of the frozen matrix at every probe
+    if (moving_slip) factor_unknowns_ = -1;
+    lp_xs_.setZero();
+    if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = lp_X_;
+    frozen_probe(mode, -1, G);
+    lp.b0 = lp_f_;
+    lp.g0 = lp_g_.head(G);
+    for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
+    for (Index j = 0; j < probed; ++j) {
+      lp_xs_[j] = Scalar(1);
+      frozen_probe(mode, -1, G);
+      lp_xs_[j] = Scalar(0);
+      lp.A.col(j) = lp_f_;
+      if (G > 0) lp.Gx.col(j) = lp_g_.head(G);
+    }
+    for (Index l = 0; l < static_cast<Index>(loads_.size()); ++l) {
+      const Load& load = loads_[static_cast<std::size_t>(l)];
+      if (load.time_function) continue;  // left to the remainder
+      frozen_probe(mode, l, G);
+      // F = a sin(w t + phi) + offset = a sin(phi) cos(w t) + a cos(phi) sin(w t) + offset
+      const Scalar cosine = load.amplitude * sin(load.phase), sine = load.amplitude * cos(load.phase);
+      if (load.omega == Scalar(0)) {
+        lp.b0 += (load.offset + cosine) * lp_f_;
+        lp.g0 += (load.offset + cosine) * lp_g_.head(G);
+        continue;
+      }
+      lp.b0 += load.offset * lp_f_;
+      lp.g0 += load.offset * lp_g_.head(G);
+      const Index k = static_cast<Index>(std::find(lp.omega.begin(), lp.omega.end(), abs(load.omega)) - lp.omega.begin());
+      const Scalar s = load.omega < 0 ? -sine : sine;  // sin(-w t + phi) = sin(phi) cos(w t) - cos(phi) sin(w t)
+      lp.bc.col(k) += cosine * lp_f_;
+      lp.bs.col(k) += s * lp_f_;
+      lp.gc.col(k) += cosine * lp_g_.head(G);
+      lp.gs.col(k) += s * lp_g_.head(G);
+    }
+    for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
+    options_.refine_stale_factorisation = refine;
+    if (moving_slip) factor_unknowns_ = -1;  // rhs() forms these rows in element space
+    cache_valid_ = false;
+  }
+
+  /// One probe: the frozen solve at the probe state lp_xs_ with load `load` at unit value (none
+  /// for -1); the derivative of x_L into lp_f_ and, for G > 0, the guards into lp_g_.
+  void frozen_probe(const Mode& mode, Index load, Index G) {
+    structural_r0(lp_xs_);
+    if (load >= 0) r0_ += load_psi_.col(load);
+    solve_forces<true>(mode, lp_xs_);
+    linear_derivative(eval_, lp_xs_, lp_f_);
+    if (G > 0) fill_guards(mode, eval_, lp_g_.data());
+  }
+
   /// Signed slip coefficient mu_i with f_i = -mu_i N_i for a slipping (or regularised) damper.
   Scalar slip_coefficient(Index i, ContactState s, Scalar V) const {
     using std::isnan;
@@ -640,15 +814,29 @@ class FrictionDampedSystem {
   /// (A + L^T F) u = c - L^T r0, or the mode-space system (I + F A^-1 L^T) q'' = r0 + F A^-1 c,
   /// used with A = I (rows with |A_jj| >= 1/2 are divided by A_jj as they are assembled).
   void solve(const Mode& mode, Scalar t, const State& x) const {
+    structural_r0(x);
+    for (Index l = 0; l < load_psi_.cols(); ++l)
+      r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
+    solve_forces<false>(mode, x);
+  }
+
+  /// r0_ = -omega^2 q - c q' with the basis' modal damping coefficients c (2 zeta omega, or
+  /// alpha + beta omega^2 for Rayleigh damping; r0 of docs/model.md without the loads).
+  void structural_r0(const State& x) const {
+    const auto q = x.template segment<Modes>(0, n_);
+    const auto qd = x.template segment<Modes>(n_, n_);
+    modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(modal_damping_).cwiseProduct(qd);
+  }
+
+  /// The solve after r0_ = r0 (docs/model.md) is formed. Frozen (linear_part): every damper's
+  /// rows as at a fixed contact at the state's X (a slipping damper's too: no convective terms,
+  /// no slope coupling) with the slip coefficient lp_mu_ instead of the law's.
+  template <bool Frozen>
+  void solve_forces(const Mode& mode, const State& x) const {
     const Index n = n_, D = D_;
     const auto q = x.template segment<Modes>(0, n);
     const auto qd = x.template segment<Modes>(n, n);
     Evaluation& e = eval_;
-
-    modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(modal_damping_).cwiseProduct(qd);
-    for (Index l = 0; l < load_psi_.cols(); ++l)
-      r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
-
     const bool moving = options_.moving_contact;
     num_unknowns_ = 0;
     for (Index i = 0; i < D; ++i) {
@@ -669,7 +857,7 @@ class FrictionDampedSystem {
       }
       const ContactState s = mode[i];
       const bool stuck = has_stick_[iu] && s == ContactState::Stick;
-      if (moving && !stuck) {  // the contact moves at every call: element-space products
+      if (!Frozen && moving && !stuck) {  // the contact moves at every call: element-space products
         moving_damper(i, mode, x);
         continue;
       }
@@ -699,7 +887,7 @@ class FrictionDampedSystem {
         modal(F_.col(j)) = -b;
         modal(L_.col(j)) = -m * b;
       } else {  // slip rows (15-16 with 19 and 22): f_i = -mu_i N_i
-        const Scalar mu = slip_coefficient(i, s, V);
+        const Scalar mu = Frozen ? lp_mu_[i] : slip_coefficient(i, s, V);
         mu_[i] = mu;
         if (inertial) {
           const Index j = add_unknown(i, Scalar(1), dmp.preload, mu, Scalar(0));
@@ -726,7 +914,7 @@ class FrictionDampedSystem {
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       Scalar bq;
-      if (moving && !stuck) {  // b from moving_damper
+      if (!Frozen && moving && !stuck) {  // b from moving_damper
         bq = modal(slip_b_.col(i)).dot(modal(e.qdd));
       } else {
         bq = C_.col(D + i).dot(e.qdd);
@@ -1261,6 +1449,17 @@ class FrictionDampedSystem {
   Scalar cache_t_{};
   Mode cache_mode_;
   State cache_x_;
+
+  // Linear part (linear_part): probe work vectors (sized by the first call), the key of the last
+  // call (mode, frozen X and slip coefficients) with its version, the last exact mode's result.
+  State lp_xs_;
+  Vector lp_f_, lp_b_, lp_X_, lp_mu_, lp_key_X_, lp_key_mu_;
+  GuardVector lp_g_;
+  std::vector<Scalar> lp_preload_;
+  Mode lp_mode_;
+  bool lp_key_valid_ = false, lp_cached_ = false;
+  std::uint64_t lp_version_ = 0;
+  LinearPart<Scalar> lp_cache_;
 
   std::vector<ContactEvent> events_;
   std::vector<Index> involved_;

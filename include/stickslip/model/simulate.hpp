@@ -4,6 +4,7 @@
 
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/ode.hpp"
+#include "stickslip/ode/exact_linear_stepper.hpp"
 
 #include <cmath>
 #include <complex>
@@ -19,7 +20,12 @@ namespace stickslip {
 enum class Integrator : std::uint8_t {
   RungeKutta4,      ///< fixed step StepperOptions::fixed_step (the paper's method)
   DormandPrince54,  ///< adaptive explicit 5(4) with dense output
-  Rosenbrock23      ///< adaptive linearly implicit, stiffly stable
+  Rosenbrock23,     ///< adaptive linearly implicit, stiffly stable
+  /// ExactLinearStepper: exp(A_m delta) where the mode is linear (LinearPart::exact), Lawson
+  /// Dormand-Prince 5(4) with StepperOptions::rtol/atol where it is not; needs a system with
+  /// linear_part (has_linear_part_v). Grid: ExactLinearStepper::samples_per_period per shortest
+  /// period, at most StepperOptions::max_step.
+  Exponential
 };
 
 /// "rk4", "dopri5", "rosenbrock23".
@@ -28,16 +34,20 @@ inline const char* to_string(Integrator i) noexcept {
     case Integrator::RungeKutta4: return "rk4";
     case Integrator::DormandPrince54: return "dopri5";
     case Integrator::Rosenbrock23: return "rosenbrock23";
+    case Integrator::Exponential: return "exponential";
   }
   return "unknown";
 }
 
-/// Parses "rk4" | "dopri5" | "rosenbrock23"; throws std::invalid_argument otherwise.
+/// Parses "rk4" | "dopri5" | "rosenbrock23" | "exponential" (also "exact");
+/// throws std::invalid_argument otherwise.
 inline Integrator parse_integrator(const std::string& name) {
   if (name == "rk4") return Integrator::RungeKutta4;
   if (name == "dopri5" || name == "dopri") return Integrator::DormandPrince54;
   if (name == "rosenbrock23" || name == "rosenbrock" || name == "stiff") return Integrator::Rosenbrock23;
-  detail::throw_invalid("parse_integrator", "integrator must be rk4, dopri5 or rosenbrock23", name);
+  if (name == "exponential" || name == "exact") return Integrator::Exponential;
+  detail::throw_invalid("parse_integrator",
+                        "integrator must be rk4, dopri5, rosenbrock23 or exponential", name);
 }
 
 /// Integrator and stepper options of one run.
@@ -115,6 +125,8 @@ void require_rk4_stable(const Rates& rates, Scalar h) {
 /// above the stability limit of one of those rates throws std::invalid_argument before any step
 /// (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
 /// (FrictionDampedSystem) checks the sizes of x0 and mode first (std::invalid_argument).
+/// Integrator::Exponential throws std::invalid_argument ("options.integrator") for a system
+/// without linear_part.
 template <class System, class Observer>
 HybridResult<typename System::Scalar, typename System::State, typename System::Mode> simulate(
     System& system, typename System::Mode mode, typename System::Scalar t0,
@@ -133,6 +145,16 @@ HybridResult<typename System::Scalar, typename System::State, typename System::M
     case Integrator::Rosenbrock23: {
       HybridStepper<System, Rosenbrock23> stepper(system, options.stepper);
       return stepper.integrate(mode, t0, x0, t_end, observer);
+    }
+    case Integrator::Exponential: {
+      if constexpr (has_linear_part_v<System>) {
+        ExactLinearStepper<System> stepper(system, options.stepper);
+        return stepper.integrate(mode, t0, x0, t_end, observer);
+      } else {
+        detail::throw_invalid("simulate",
+                              "options.integrator Exponential needs a system with linear_part",
+                              std::string(to_string(options.integrator)));
+      }
     }
     case Integrator::DormandPrince54: break;
   }

@@ -1,0 +1,235 @@
+#pragma once
+/// \file augmented_flow.hpp
+/// \brief The exact flow of the linear part of a mode in augmented autonomous form (internal to
+/// ExactLinearStepper).
+///
+/// With x = (x_L, x_Q) (linear components, then quadratures) and the clock components
+/// c = (1, cos w_1 t, sin w_1 t, ...), the vector y = (x, c) obeys
+///
+///     y' = Â y + R(t, y),   Â = [[A, 0, b0 bc_1 bs_1 ...], [0, 0, 0], [0, 0, blkdiag(W_k)]],
+///     W_k = [[0, -w_k], [w_k, 0]],
+///
+/// where R = (f(t, x) - (Â y)_x, 0) is the remainder of the mode (zero in the x_L rows where the
+/// mode is exact, the quadrature derivatives in the x_Q rows). Constant and harmonic loads,
+/// including a harmonic at a resonance of A, are then part of exp(Â tau): no particular-solution
+/// special cases.
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/linear_part.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace stickslip {
+
+/// Work counters of ExactLinearStepper (beside the StepperStats of the result).
+struct ExactStepperStats {
+  long exact_steps = 0;          ///< steps of the exact propagation (r_m = 0)
+  long exponential_steps = 0;    ///< accepted steps of the exponential Runge-Kutta method
+  long matvecs = 0;              ///< products of the augmented generator with a vector
+  long propagator_exponentials = 0;  ///< matrices exp(Â delta) computed (Padé, MatrixFunctions)
+  long eigen_decompositions = 0;  ///< eigenvalue computations of A_m (sampling rate)
+  long linear_part_calls = 0;    ///< calls of System::linear_part
+  long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
+};
+
+namespace detail {
+
+/// Â of a mode, exp(Â tau) y by a scaled Taylor series, and a cached exp(Â delta).
+template <class Scalar>
+class AugmentedFlow {
+ public:
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// Build Â from lp for a state of nx components (lp.size() <= nx). The eigenvalues of A_m are
+  /// recomputed only when lp.version or the size changed; the cached propagator is dropped only
+  /// when Â changed. Returns true when Â changed.
+  bool assign(const LinearPart<Scalar>& lp, Eigen::Index nx, ExactStepperStats& st) {
+    const Eigen::Index n = lp.size();
+    const Eigen::Index nk = static_cast<Eigen::Index>(lp.omega.size());
+    const Eigen::Index dim = nx + 1 + 2 * nk;
+    build_.setZero(dim, dim);
+    build_.topLeftCorner(n, n) = lp.A;
+    if (n > 0) {
+      build_.block(0, nx, n, 1) = lp.b0;
+      for (Eigen::Index k = 0; k < nk; ++k) {
+        const Scalar w = lp.omega[static_cast<std::size_t>(k)];
+        build_.block(0, nx + 1 + 2 * k, n, 1) = lp.bc.col(k);
+        build_.block(0, nx + 2 + 2 * k, n, 1) = lp.bs.col(k);
+        build_(nx + 1 + 2 * k, nx + 2 + 2 * k) = -w;
+        build_(nx + 2 + 2 * k, nx + 1 + 2 * k) = w;
+      }
+    }
+    const bool same = a_.rows() == dim && a_ == build_;
+    if (!same) {
+      a_.swap(build_);
+      ladder_k_ = -1;
+      norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
+    }
+    const bool rate_stale = !rate_valid_ || version_ != lp.version || n_ != n;
+    nx_ = nx;
+    n_ = n;
+    omega_ = lp.omega;
+    if (rate_stale) {
+      rate_ = 0;
+      if (n > 0) {
+        eig_.compute(lp.A, false);
+        ++st.eigen_decompositions;
+        if (eig_.info() == Eigen::Success) rate_ = eig_.eigenvalues().cwiseAbs().maxCoeff();
+        else rate_ = lp.A.cwiseAbs().rowwise().sum().maxCoeff();  // a bound on |lambda|
+      }
+      version_ = lp.version;
+      rate_valid_ = true;
+    }
+    fastest_ = rate_;
+    for (Scalar w : lp.omega) fastest_ = std::max(fastest_, std::abs(w));
+    term_.resize(dim);
+    prod_.resize(dim);
+    return !same;
+  }
+
+  Eigen::Index dim() const noexcept { return a_.rows(); }
+  Eigen::Index state_size() const noexcept { return nx_; }
+  Eigen::Index linear_size() const noexcept { return n_; }
+  const Matrix& generator() const noexcept { return a_; }
+
+  /// max(|lambda(A_m)|, w_k): the fastest rate (rad per time unit) of the mode's solutions.
+  Scalar fastest_rate() const noexcept { return fastest_; }
+
+  /// y = (x, 1, cos w_1 t, sin w_1 t, ...).
+  template <class X>
+  void lift(Scalar t, const X& x, Vector& y) const {
+    y.resize(dim());
+    y.head(nx_) = x;
+    set_clock(t, y);
+  }
+
+  /// Overwrite the clock components of y with their exact values at t (keeps them from drifting
+  /// by round-off over many steps).
+  void set_clock(Scalar t, Vector& y) const {
+    using std::cos;
+    using std::sin;
+    y[nx_] = Scalar(1);
+    for (std::size_t k = 0; k < omega_.size(); ++k) {
+      const Eigen::Index j = nx_ + 1 + 2 * static_cast<Eigen::Index>(k);
+      y[j] = cos(omega_[k] * t);
+      y[j + 1] = sin(omega_[k] * t);
+    }
+  }
+
+  /// out[0 .. nx) = (Â y) restricted to the state rows (out may be longer).
+  template <class Out>
+  void rate(const Vector& y, Out& out, ExactStepperStats& st) const {
+    STICKSLIP_ASSERT(out.size() >= nx_ && y.size() == dim());
+    out.head(nx_).noalias() = a_.topRows(nx_) * y;
+    ++st.matvecs;
+  }
+
+  /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
+  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
+  /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
+  /// while Â and base do not change.
+  void prepare(Scalar base, ExactStepperStats& st) {
+    if (!(base > 0) || !std::isfinite(base) || !(norm1_ > 0)) {
+      ladder_k_ = -1;
+      return;
+    }
+    if (ladder_k_ >= 0 && base == base_) return;
+    using std::ceil;
+    using std::log2;
+    const int K = std::max(0, static_cast<int>(ceil(log2(Scalar(2) * norm1_ * base))));
+    ladder_.resize(static_cast<std::size_t>(K) + 1);
+    build_ = a_ * (base / std::pow(Scalar(2), Scalar(K)));
+    ladder_[static_cast<std::size_t>(K)] = build_.exp();
+    ++st.propagator_exponentials;
+    for (int k = K; k > 1; --k) {
+      const auto ku = static_cast<std::size_t>(k);
+      ladder_[ku - 1].noalias() = ladder_[ku] * ladder_[ku];
+    }
+    if (K > 0) {  // the grid propagator, used most, directly (no round-off of K squarings)
+      build_ = a_ * base;
+      ladder_[0] = build_.exp();
+      ++st.propagator_exponentials;
+    }
+    base_ = base;
+    ladder_k_ = K;
+  }
+
+  /// True when prepare() built a ladder (Â != 0 and a finite base).
+  bool has_ladder() const noexcept { return ladder_k_ >= 0; }
+
+  /// exp(Â base) of the ladder (prepare() first).
+  const Matrix& propagator() const {
+    STICKSLIP_ASSERT(ladder_k_ >= 0 && "AugmentedFlow: prepare() first");
+    return ladder_[0];
+  }
+
+  /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
+  /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
+  /// without a ladder, s Taylor sub-steps with ||Â||_1 tau / s <= 1.
+  void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
+    if (!(tau > 0) || !(norm1_ > 0)) return;
+    if (ladder_k_ >= 0) {
+      using std::floor;
+      const Scalar whole = floor(tau / base_);
+      for (long i = 0; i < static_cast<long>(whole); ++i) apply(ladder_[0], v, st);
+      Scalar rest = tau - whole * base_;
+      Scalar step = base_;
+      for (int k = 1; k <= ladder_k_; ++k) {
+        step /= Scalar(2);
+        if (rest >= step) {
+          apply(ladder_[static_cast<std::size_t>(k)], v, st);
+          rest -= step;
+        }
+      }
+      taylor(rest, v, st);
+      return;
+    }
+    using std::ceil;
+    const Scalar s_real = std::max(Scalar(1), ceil(norm1_ * tau));
+    const Scalar dt = tau / s_real;
+    for (long i = 0; i < static_cast<long>(s_real); ++i) taylor(dt, v, st);
+  }
+
+ private:
+  void apply(const Matrix& phi, Vector& v, ExactStepperStats& st) {
+    prod_.noalias() = phi * v;
+    v.swap(prod_);
+    ++st.matvecs;
+  }
+  // v <- sum_k (Â dt)^k / k! v until the term is below the unit round-off relative to the sum.
+  void taylor(Scalar dt, Vector& v, ExactStepperStats& st) {
+    if (!(dt > 0)) return;
+    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    term_ = v;
+    for (int k = 1; k <= 40; ++k) {
+      prod_.noalias() = a_ * term_;
+      ++st.matvecs;
+      term_ = (dt / Scalar(k)) * prod_;
+      v += term_;
+      if (term_.template lpNorm<Eigen::Infinity>() <= eps * v.template lpNorm<Eigen::Infinity>())
+        break;
+    }
+  }
+
+  Matrix a_, build_;
+  std::vector<Matrix> ladder_;
+  Vector term_, prod_;
+  std::vector<Scalar> omega_;
+  Eigen::EigenSolver<Matrix> eig_;
+  Eigen::Index nx_ = 0, n_ = 0;
+  Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
+  int ladder_k_ = -1;  // -1: no ladder
+  std::uint64_t version_ = 0;
+  bool rate_valid_ = false;
+};
+
+}  // namespace detail
+}  // namespace stickslip

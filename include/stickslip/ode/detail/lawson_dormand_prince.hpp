@@ -1,0 +1,92 @@
+#pragma once
+/// \file lawson_dormand_prince.hpp
+/// \brief Integrating-factor (Lawson) form of the Dormand-Prince 5(4) pair in the frame of the
+/// augmented generator Â (internal to ExactLinearStepper).
+///
+/// For y' = Â y + R(t, y), the Dormand-Prince pair applied to w(s) = exp(-Â s) y(t + s) gives,
+/// written back in y (c_i non-decreasing, so that only exp(Â tau) with tau >= 0 appears):
+///
+///     Y_i   = exp(c_i h Â) y_0 + h sum_{j<i} a_ij exp((c_i - c_j) h Â) R_j,  R_j = R(t + c_j h, Y_j)
+///     y_1   = exp(h Â) y_0 + h sum_j b_j exp((1 - c_j) h Â) R_j
+///     err   = h sum_j (b_j - bhat_j) exp((1 - c_j) h Â) R_j   (R_7 = R(t + h, y_1), FSAL)
+///
+/// The linear part is exact for any h (no stability limit from Â); the order is 5 for a smooth
+/// remainder (Hochbruck & Ostermann, Acta Numerica 19, 2010, Sec. 2.2), error estimate O(h^5).
+
+#include <stickslip/ode/detail/augmented_flow.hpp>
+#include <stickslip/ode/detail/step_control.hpp>
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace stickslip {
+namespace detail {
+
+template <class Scalar>
+class LawsonDormandPrince {
+ public:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  static constexpr int order = 5;
+  static constexpr int error_order = 4;
+
+  /// Size the stage vectors (allocates only when dim grows).
+  void initialize(Eigen::Index dim) {
+    for (Vector& v : k_) v.resize(dim);
+    p_.resize(dim);
+    ys_.resize(dim);
+  }
+
+  /// One step of size h from (t, y0) with r0 = R(t, y0): writes y1 and r1 = R(t + h, y1), returns
+  /// the weighted RMS error (over the first nx components). `rem(t, y, out)` evaluates R and
+  /// returns false when it is not finite (the step then returns NaN).
+  template <class Remainder>
+  Scalar step(AugmentedFlow<Scalar>& flow, Remainder&& rem, Scalar t, const Vector& y0,
+              const Vector& r0, Scalar h, Vector& y1, Vector& r1, Scalar rtol, Scalar atol,
+              ExactStepperStats& st) {
+    const auto c = [](double v) { return static_cast<Scalar>(v); };
+    static constexpr std::array<double, 7> cs{0.0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1.0, 1.0};
+    static constexpr double a[6][5] = {
+        {0, 0, 0, 0, 0},
+        {1.0 / 5, 0, 0, 0, 0},
+        {3.0 / 40, 9.0 / 40, 0, 0, 0},
+        {44.0 / 45, -56.0 / 15, 32.0 / 9, 0, 0},
+        {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729, 0},
+        {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656}};
+    static constexpr std::array<double, 7> b{35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192,
+                                             -2187.0 / 6784, 11.0 / 84, 0.0};
+    static constexpr std::array<double, 7> e{71.0 / 57600,     0.0,         -71.0 / 16695,
+                                             71.0 / 1920,      -17253.0 / 339200,
+                                             22.0 / 525,       -1.0 / 40};
+    const Eigen::Index nx = flow.state_size();
+    p_ = y0;
+    k_[0] = r0;
+    for (int i = 1; i < 6; ++i) {
+      // Carry y0 and R_0 .. R_{i-1} from c_{i-1} h to c_i h.
+      const Scalar dt = c(cs[static_cast<std::size_t>(i)] - cs[static_cast<std::size_t>(i - 1)]) * h;
+      flow.expv(dt, p_, st);
+      for (int j = 0; j < i; ++j) flow.expv(dt, k_[static_cast<std::size_t>(j)], st);
+      ys_ = p_;
+      for (int j = 0; j < i; ++j)
+        if (a[i][j] != 0.0) ys_.noalias() += (h * c(a[i][j])) * k_[static_cast<std::size_t>(j)];
+      if (!rem(t + c(cs[static_cast<std::size_t>(i)]) * h, ys_, k_[static_cast<std::size_t>(i)]))
+        return std::numeric_limits<Scalar>::quiet_NaN();
+    }
+    // All carried to c = 1 (c_6 = 1): the solution and the error estimate.
+    y1 = p_;
+    for (std::size_t j = 0; j < 6; ++j)
+      if (b[j] != 0.0) y1.noalias() += (h * c(b[j])) * k_[j];
+    if (!rem(t + h, y1, r1)) return std::numeric_limits<Scalar>::quiet_NaN();
+    ys_ = (h * c(e[6])) * r1;
+    for (std::size_t j = 0; j < 6; ++j)
+      if (e[j] != 0.0) ys_.noalias() += (h * c(e[j])) * k_[j];
+    return weighted_rms(ys_.head(nx), y0.head(nx), y1.head(nx), rtol, atol);
+  }
+
+ private:
+  std::array<Vector, 6> k_;
+  Vector p_, ys_;
+};
+
+}  // namespace detail
+}  // namespace stickslip

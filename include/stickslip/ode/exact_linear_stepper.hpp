@@ -1,0 +1,644 @@
+#pragma once
+/// \file exact_linear_stepper.hpp
+/// \brief ExactLinearStepper: integrates a hybrid system that provides its linear part
+/// (linear_part.hpp) exactly where the mode is linear, and by an exponential (Lawson)
+/// Runge-Kutta method in the frame of the linear part where it is not. No stability limit from
+/// the linear part; guards are sampled at a fixed fraction of the shortest period of the mode,
+/// with a Hermite (value + slope) test for grazing between samples, and events are located on
+/// the exact (or exponential) solution. See docs/ode.md, "Exact and exponential integration".
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/augmented_flow.hpp>
+#include <stickslip/ode/detail/lawson_dormand_prince.hpp>
+#include <stickslip/ode/detail/step_control.hpp>
+#include <stickslip/ode/event_locator.hpp>
+#include <stickslip/ode/detail/run_bookkeeping.hpp>
+#include <stickslip/ode/hybrid_system.hpp>
+#include <stickslip/ode/linear_part.hpp>
+#include <stickslip/ode/stepper_options.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+/// Integrator of a hybrid system with a linear part (has_linear_part_v), with event location.
+///
+/// In a mode whose linear part is exact (LinearPart::exact, r_m = 0) the state is propagated by
+/// y(t + delta) = exp(Â delta) y(t) on a grid of spacing delta = min(max_step, 2 pi /
+/// (samples_per_period * rate)), rate = max(|lambda(A_m)|, w_k) (no step-size control: the
+/// propagation is exact to round-off); a mode without oscillation or load frequency is crossed
+/// in one step. States between grid points (events, samples) come from exp(Â tau) y by a scaled
+/// Taylor series. Quadrature components are integrated by 5-point Gauss-Legendre over each grid
+/// step on the exact x_L. Where r_m != 0 (or linear_part returns false, then with Â = 0, i.e.
+/// plain Dormand-Prince) the Lawson form of Dormand-Prince 5(4) is used with the error control
+/// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
+/// delta in modes with guards; the linear part is refreshed at every accepted step (the system's
+/// `version` tells whether A_m changed).
+///
+/// Events: a guard fires when it crosses at a grid point (GuardMonitor semantics, as in
+/// HybridStepper), or when the cubic Hermite interpolant of its value and slope between two
+/// points dips into the triggering side while both ends are outside it: the interval is then
+/// refined at the interpolant's minimum on the exact solution until a crossing is bracketed or
+/// the interval is below event_time_tolerance (a touch, not an event). The crossing is located by
+/// Illinois root finding on the exact solution; the state handed to `transition` is the exact
+/// state at the bracket end past the guard. Slopes come from the affine guards when the mode
+/// gives them (LinearPart::Gx ...), else from a central difference along the exact flow.
+///
+/// Options used: output_interval, event_time_tolerance, guard_zero_tolerance, the Zeno guard,
+/// max_steps, max_step, and (inexact modes) the step control. fixed_step and event_location are
+/// ignored. Work counters beyond StepperStats: work().
+template <class System>
+class ExactLinearStepper {
+  static_assert(is_hybrid_system_v<System>,
+                "ExactLinearStepper: System needs Scalar, State, Mode, rhs, num_guards, guards, "
+                "guard_direction and transition; see docs/ode.md");
+  static_assert(has_linear_part_v<System>,
+                "ExactLinearStepper: System needs bool linear_part(mode, t, x, "
+                "LinearPart<Scalar>&); see stickslip/ode/linear_part.hpp");
+
+ public:
+  using Scalar = typename System::Scalar;
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  using Result = HybridResult<Scalar, State, Mode>;
+  using Options = StepperOptions<Scalar>;
+  using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// Guard samples per shortest period 2 pi / rate of a mode.
+  static constexpr int samples_per_period = 8;
+
+  /// Keeps a reference to `system`. Throws std::invalid_argument ("ExactLinearStepper:
+  /// options.<name> ...") for options out of range.
+  explicit ExactLinearStepper(System& system, StepperOptions<Scalar> options = {})
+      : sys_(system), opt_(options) {
+    opt_.validate("ExactLinearStepper");
+  }
+
+  /// Integrate from (mode, t0, x0) to t_end >= t0 with observer callbacks as HybridStepper.
+  /// Throws std::invalid_argument for invalid arguments, or when linear_part fills sizes that do
+  /// not match the state and guards.
+  template <class Observer>
+  Result integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end, Observer& observer);
+
+  /// Integrate without observer.
+  Result integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end) {
+    NullObserver none;
+    return integrate(std::move(mode), t0, x0, t_end, none);
+  }
+
+  const Options& options() const { return opt_; }
+  /// Work counters of the last run.
+  const ExactStepperStats& work() const { return work_; }
+
+ private:
+  // ---- the mode ----------------------------------------------------------------------------
+  void check_linear_part(const Mode& m) const;
+  bool start_mode(const Mode& m, Scalar t, StepperStats& st);
+  // linear_part at (t, x_): Â, the sampling interval, y_ and (inexact modes, when Â changed or
+  // `force`) the remainder r_. False when the remainder is not finite.
+  bool refresh_linear_part(const Mode& m, Scalar t, bool force, StepperStats& st);
+
+  // ---- evaluations -------------------------------------------------------------------------
+  bool remainder(const Mode& m, Scalar t, const Vector& y, Vector& out, StepperStats& st) {
+    xr_ = y.head(nx_);
+    sys_.rhs(m, t, xr_, fr_);
+    ++st.rhs_evaluations;
+    flow_.rate(y, out, work_);
+    out.head(nx_) = fr_ - out.head(nx_);
+    out.tail(out.size() - nx_).setZero();
+    return detail::all_finite(fr_);
+  }
+  // x' at (t, y): the exact rate where r = 0 (rhs only for the quadratures), else rhs.
+  bool derivative(const Mode& m, Scalar t, const Vector& y, const State& x, State& xdot,
+                  StepperStats& st) {
+    if (exact_) {
+      flow_.rate(y, xdot, work_);
+      if (nq_ == 0) return true;
+    }
+    sys_.rhs(m, t, x, fr_);
+    ++st.rhs_evaluations;
+    if (exact_) xdot.tail(nq_) = fr_.tail(nq_);
+    else xdot = fr_;
+    return detail::all_finite(fr_);
+  }
+  void eval_guards(const Mode& m, Scalar t, const State& x, GuardVector& g, StepperStats& st) {
+    if (g.size() == 0) return;
+    sys_.guards(m, t, x, g);
+    ++st.guard_evaluations;
+  }
+  // Guard rates dg/dt along the solution through (t, x) with x' = xdot.
+  void guard_slopes(const Mode& m, Scalar t, const State& x, const State& xdot, GuardVector& s,
+                    StepperStats& st);
+  // Quadratures at b from y at a (x_L exact): 5-point Gauss-Legendre.
+  bool quadrature(const Mode& m, Scalar a, const Vector& ya, Scalar b, Vector& yb,
+                  StepperStats& st);
+  // Exact (or exponential) state at tau in [t_, t1] into ys_ / xs_; guards into gt_ and, if
+  // asked, slopes into st_. False when not finite.
+  bool eval_point(const Mode& m, Scalar tau, bool slopes, StepperStats& st);
+
+  // ---- events ------------------------------------------------------------------------------
+  struct Bracket {
+    Scalar lo, dlo, hi, dhi;
+  };
+  bool grazing_bracket(const Mode& m, Eigen::Index i, Scalar a, Scalar da, Scalar sa, Scalar b,
+                       Scalar db, Scalar sb, Bracket& out, StepperStats& st);
+  // Earliest event in [t_, t1]; on true, xe_ holds the exact state at the returned time te_.
+  bool find_event(const Mode& m, Scalar t1, StepperStats& st);
+
+  template <class Observer>
+  bool emit_samples(Observer& obs, const Mode& m, Scalar upto, Scalar t1, StepperStats& st);
+
+  static Result finish(Result& r, Status s, Scalar t, const State& x, const Mode& m,
+                       std::string message) {
+    return detail::finish_run(r, s, t, x, m, std::move(message));
+  }
+
+  System& sys_;
+  Options opt_;
+  ExactStepperStats work_;
+  LinearPart<Scalar> lp_;
+  detail::AugmentedFlow<Scalar> flow_;
+  detail::LawsonDormandPrince<Scalar> lawson_;
+  detail::GuardMonitor<Scalar> monitor_;
+  // Step start (t_, y_, x_, r_), step end (y1_, x1_, r1_), trial point (ys_, xs_, rs_).
+  Vector y_, y1_, ys_, r_, r1_, rs_, yq_;
+  State x_, x1_, xs_, xe_, xd_, xr_, fr_, xg_;
+  GuardVector ga_, gb_, gt_, sa_, sb_, st_, gp_, gm_, roots_;
+  TriggeredGuards triggered_;
+  detail::ZenoGuard<Scalar> zeno_;
+  Scalar t_ = 0, te_ = 0, t0_ = 0, delta_ = 0;
+  Eigen::Index nx_ = 0, nq_ = 0;
+  long next_sample_ = 0;
+  bool linear_ = false, exact_ = false, affine_ = false, guarded_ = false;
+};
+
+// ------------------------------------------------------------------------------------------
+template <class System>
+void ExactLinearStepper<System>::check_linear_part(const Mode& m) const {
+  static const std::string where = "System::linear_part";
+  const Eigen::Index n = lp_.size();
+  const auto nk = static_cast<Eigen::Index>(lp_.omega.size());
+  if (lp_.A.cols() != n || n > nx_)
+    detail::throw_invalid(where, "A must be square with size() <= the state size", n);
+  if (lp_.b0.size() != n) detail::throw_invalid(where, "b0 must have size() rows", lp_.b0.size());
+  if (nk > 0 && (lp_.bc.rows() != n || lp_.bs.rows() != n || lp_.bc.cols() != nk ||
+                 lp_.bs.cols() != nk))
+    detail::throw_invalid(where, "bc and bs must be size() x omega.size()", lp_.bc.cols());
+  if (lp_.has_affine_guards()) {
+    const Eigen::Index ng = sys_.num_guards(m);
+    if (lp_.Gx.rows() != ng || lp_.Gx.cols() != n || lp_.g0.size() != ng ||
+        (nk > 0 && (lp_.gc.rows() != ng || lp_.gs.rows() != ng || lp_.gc.cols() != nk ||
+                    lp_.gs.cols() != nk)))
+      detail::throw_invalid(where, "affine guards must be num_guards x size() (Gx), "
+                                   "num_guards (g0), num_guards x omega.size() (gc, gs)",
+                            lp_.Gx.rows());
+  }
+}
+
+template <class System>
+bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bool force,
+                                                     StepperStats& st) {
+  ++work_.linear_part_calls;
+  linear_ = sys_.linear_part(m, t, x_, lp_);
+  if (!linear_) {
+    // No linear form: Â = 0 (the clock only), the Lawson method is Dormand-Prince itself.
+    lp_.A.resize(0, 0);
+    lp_.b0.resize(0);
+    lp_.omega.clear();
+    lp_.bc.resize(0, 0);
+    lp_.bs.resize(0, 0);
+    lp_.Gx.resize(0, 0);
+    lp_.exact = false;
+  }
+  check_linear_part(m);
+  exact_ = linear_ && lp_.exact;
+  affine_ = linear_ && lp_.has_affine_guards();
+  nq_ = nx_ - lp_.size();
+  const bool changed = flow_.assign(lp_, nx_, work_);
+  flow_.lift(t, x_, y_);
+  const Scalar rate = flow_.fastest_rate();
+  const Scalar two_pi = Scalar(2) * Scalar(EIGEN_PI);
+  delta_ = rate > 0 ? two_pi / (Scalar(samples_per_period) * rate)
+                    : std::numeric_limits<Scalar>::infinity();
+  delta_ = std::min(delta_, opt_.max_step);
+  // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
+  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_);
+  lawson_.initialize(flow_.dim());
+  for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_}) v->resize(flow_.dim());
+  if (!exact_ && (force || changed)) return remainder(m, t, y_, r_, st);
+  return true;
+}
+
+template <class System>
+bool ExactLinearStepper<System>::start_mode(const Mode& m, Scalar t, StepperStats& st) {
+  if (!refresh_linear_part(m, t, true, st)) return false;
+  const Eigen::Index ng = sys_.num_guards(m);
+  if (ga_.size() != ng)
+    for (GuardVector* g : {&ga_, &gb_, &gt_, &sa_, &sb_, &st_, &gp_, &gm_, &roots_}) g->resize(ng);
+  guarded_ = ng > 0;
+  eval_guards(m, t, x_, ga_, st);
+  if (!detail::all_finite(ga_)) return false;
+  monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
+                      opt_.guard_zero_tolerance);
+  if (guarded_) {
+    if (!derivative(m, t, y_, x_, xd_, st)) return false;
+    guard_slopes(m, t, x_, xd_, sa_, st);
+  }
+  return true;
+}
+
+template <class System>
+void ExactLinearStepper<System>::guard_slopes(const Mode& m, Scalar t, const State& x,
+                                              const State& xdot, GuardVector& s,
+                                              StepperStats& st) {
+  if (affine_) {
+    // g' = Gx x_L' + sum_k w_k (-gc_k sin(w_k t) + gs_k cos(w_k t)).
+    s.noalias() = lp_.Gx * xdot.head(lp_.size());
+    using std::cos;
+    using std::sin;
+    for (std::size_t k = 0; k < lp_.omega.size(); ++k) {
+      const Scalar w = lp_.omega[k];
+      const auto j = static_cast<Eigen::Index>(k);
+      s.noalias() += (-w * sin(w * t)) * lp_.gc.col(j) + (w * cos(w * t)) * lp_.gs.col(j);
+    }
+    return;
+  }
+  // Central difference along the tangent: (g(t + e, x + e x') - g(t - e, x - e x')) / (2 e);
+  // e = 1e-5 of the sampling interval (at most 1e-5): truncation O(e^2 g''') and round-off
+  // O(eps |g| / e) both far below the values the grazing test compares.
+  const Scalar e = Scalar(1e-5) * std::min(Scalar(1), delta_);
+  xg_ = x + e * xdot;
+  eval_guards(m, t + e, xg_, gp_, st);
+  xg_ = x - e * xdot;
+  eval_guards(m, t - e, xg_, gm_, st);
+  s = (gp_ - gm_) / (Scalar(2) * e);
+}
+
+template <class System>
+bool ExactLinearStepper<System>::quadrature(const Mode& m, Scalar a, const Vector& ya, Scalar b,
+                                            Vector& yb, StepperStats& st) {
+  if (nq_ == 0) return true;
+  // Gauss-Legendre, 5 nodes on [-1, 1] (exact for degree 9).
+  static constexpr std::array<double, 5> node{-0.9061798459386640, -0.5384693101056831, 0.0,
+                                              0.5384693101056831, 0.9061798459386640};
+  static constexpr std::array<double, 5> weight{0.2369268850561891, 0.4786286704993665,
+                                                0.5688888888888889, 0.4786286704993665,
+                                                0.2369268850561891};
+  const Scalar half = (b - a) / Scalar(2);
+  const Eigen::Index n = lp_.size();
+  auto acc = yb.segment(n, nq_);
+  acc.setZero();
+  for (std::size_t j = 0; j < node.size(); ++j) {
+    const Scalar tau = a + half * (Scalar(1) + static_cast<Scalar>(node[j]));
+    yq_ = ya;
+    flow_.expv(tau - a, yq_, work_);
+    xr_ = yq_.head(nx_);
+    sys_.rhs(m, tau, xr_, fr_);
+    ++st.rhs_evaluations;
+    acc += static_cast<Scalar>(weight[j]) * fr_.tail(nq_);
+  }
+  acc = ya.segment(n, nq_) + half * acc;
+  return detail::all_finite(acc);
+}
+
+template <class System>
+bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, bool slopes,
+                                            StepperStats& st) {
+  if (exact_) {
+    ys_ = y_;
+    flow_.expv(tau - t_, ys_, work_);
+    flow_.set_clock(tau, ys_);
+    if (!quadrature(m, t_, y_, tau, ys_, st)) return false;
+  } else {
+    const Scalar err = lawson_.step(
+        flow_, [&](Scalar tt, const Vector& y, Vector& out) { return remainder(m, tt, y, out, st); },
+        t_, y_, r_, tau - t_, ys_, rs_, opt_.rtol, opt_.atol, work_);
+    if (std::isnan(err)) return false;
+  }
+  xs_ = ys_.head(nx_);
+  if (!detail::all_finite(xs_)) return false;
+  eval_guards(m, tau, xs_, gt_, st);
+  if (slopes) {
+    if (exact_) {
+      if (!derivative(m, tau, ys_, xs_, xd_, st)) return false;
+    } else {
+      flow_.rate(ys_, xd_, work_);
+      xd_ += rs_.head(nx_);
+    }
+    guard_slopes(m, tau, xs_, xd_, st_, st);
+  }
+  return detail::all_finite(gt_);
+}
+
+template <class System>
+bool ExactLinearStepper<System>::grazing_bracket(const Mode& m, Eigen::Index i, Scalar a,
+                                                 Scalar da, Scalar sa, Scalar b, Scalar db,
+                                                 Scalar sb, Bracket& out, StepperStats& st) {
+  // Distances d >= 0 at both ends; slopes sa, sb of d. Look for an interior minimum of the cubic
+  // Hermite interpolant that dips below half the smaller end value; if the exact d there is < 0,
+  // [a, tau] brackets a crossing; otherwise search [a, tau] then [tau, b] (depth-first, the
+  // earlier half first) until the intervals are below the event time tolerance.
+  struct Node {
+    Scalar a, da, sa, b, db, sb;
+  };
+  std::array<Node, 64> stack;
+  int top = 0;
+  stack[top++] = {a, da, sa, b, db, sb};
+  const Scalar tol = opt_.event_time_tolerance;
+  while (top > 0) {
+    const Node nd = stack[--top];
+    const Scalar H = nd.b - nd.a;
+    if (!(H > tol) || !(nd.sa < 0 && nd.sb > 0)) continue;  // no interior minimum
+    // p(s) = h00 da + h10 H sa + h01 db + h11 H sb on s in [0, 1]; p'(s) = 0 is a quadratic.
+    const Scalar p0 = nd.da, m0 = H * nd.sa, p1 = nd.db, m1 = H * nd.sb;
+    const Scalar qa = Scalar(6) * p0 + Scalar(3) * m0 - Scalar(6) * p1 + Scalar(3) * m1;
+    const Scalar qb = Scalar(-6) * p0 - Scalar(4) * m0 + Scalar(6) * p1 - Scalar(2) * m1;
+    const Scalar qc = m0;
+    Scalar s_min = Scalar(0.5), p_min = std::numeric_limits<Scalar>::infinity();
+    auto p = [&](Scalar s) {
+      const Scalar s2 = s * s, s3 = s2 * s;
+      return (Scalar(2) * s3 - Scalar(3) * s2 + 1) * p0 + (s3 - Scalar(2) * s2 + s) * m0 +
+             (Scalar(-2) * s3 + Scalar(3) * s2) * p1 + (s3 - s2) * m1;
+    };
+    auto consider = [&](Scalar s) {
+      if (s > 0 && s < 1 && p(s) < p_min) {
+        p_min = p(s);
+        s_min = s;
+      }
+    };
+    if (std::abs(qa) > std::numeric_limits<Scalar>::min()) {
+      const Scalar disc = qb * qb - Scalar(4) * qa * qc;
+      if (disc >= 0) {
+        const Scalar r = std::sqrt(disc);
+        consider((-qb + r) / (Scalar(2) * qa));
+        consider((-qb - r) / (Scalar(2) * qa));
+      }
+    } else if (qb != 0) {
+      consider(-qc / qb);
+    }
+    if (!(p_min < Scalar(0.5) * std::min(nd.da, nd.db))) continue;
+    const Scalar tau = nd.a + s_min * H;
+    ++work_.grazing_refinements;
+    if (!eval_point(m, tau, true, st)) continue;
+    const Scalar dt = monitor_.distance(i, gt_[i]);
+    if (dt < 0) {
+      out = {nd.a, nd.da, tau, dt};
+      return true;
+    }
+    const Scalar st_i = monitor_.distance(i, gt_[i] + st_[i]) - dt;
+    if (top + 2 > static_cast<int>(stack.size())) continue;
+    stack[top++] = {tau, dt, st_i, nd.b, nd.db, nd.sb};  // later half below
+    stack[top++] = {nd.a, nd.da, nd.sa, tau, dt, st_i};  // earlier half on top
+  }
+  return false;
+}
+
+template <class System>
+bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperStats& st) {
+  const Eigen::Index ng = gb_.size();
+  const Scalar tol = opt_.event_time_tolerance;
+  Scalar first = std::numeric_limits<Scalar>::infinity();
+  Eigen::Index first_guard = -1;
+  // Roots per guard (infinity = none).
+  for (Eigen::Index i = 0; i < ng; ++i) {
+    roots_[i] = std::numeric_limits<Scalar>::infinity();
+    const Scalar da = monitor_.distance(i, ga_[i]);
+    const Scalar db = monitor_.distance(i, gb_[i]);
+    Bracket br{};
+    bool found = false;
+    if (db < 0) {
+      br = {t_, da, t1, db};
+      found = true;
+    } else if (da >= 0) {
+      const Scalar sa = monitor_.distance(i, ga_[i] + sa_[i]) - da;
+      const Scalar sb = monitor_.distance(i, gb_[i] + sb_[i]) - db;
+      found = grazing_bracket(m, i, t_, da, sa, t1, db, sb, br, st);
+    }
+    if (!found) continue;
+    auto phi = [&](Scalar tc) {
+      if (!eval_point(m, tc, false, st)) return -std::numeric_limits<Scalar>::infinity();
+      return monitor_.distance(i, gt_[i]);
+    };
+    const auto root = detail::illinois_root(phi, br.lo, br.dlo, br.hi, br.dhi, tol);
+    roots_[i] = root.hi;
+    if (root.hi < first) {
+      first = root.hi;
+      first_guard = i;
+    }
+  }
+  if (first_guard < 0) return false;
+  triggered_.clear();
+  for (Eigen::Index i = 0; i < ng; ++i)
+    if (roots_[i] <= first + tol) triggered_.push_back(i);
+  te_ = first;
+  if (first >= t1) {
+    xe_ = x1_;
+  } else {
+    eval_point(m, first, false, st);
+    xe_ = xs_;
+  }
+  return true;
+}
+
+template <class System>
+template <class Observer>
+bool ExactLinearStepper<System>::emit_samples(Observer& obs, const Mode& m, Scalar upto, Scalar t1,
+                                              StepperStats& st) {
+  if (!(opt_.output_interval > 0)) return true;
+  for (;;) {
+    const Scalar ts = t0_ + static_cast<Scalar>(next_sample_) * opt_.output_interval;
+    if (ts > upto) return true;
+    ++next_sample_;
+    if (ts < t_) continue;
+    if (ts == t_) {
+      xs_ = x_;
+    } else if (ts == t1) {
+      xs_ = x1_;
+    } else if (!eval_point(m, ts, false, st)) {
+      xs_.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    }
+    if (!obs.on_sample(ts, xs_, m)) return false;
+  }
+}
+
+template <class System>
+template <class Observer>
+auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,
+                                           Observer& obs) -> Result {
+  detail::check_run_arguments("ExactLinearStepper::integrate", t0, x0, t_end);
+
+  Result r;
+  StepperStats& st = r.stats;
+  work_ = ExactStepperStats{};
+  nx_ = x0.size();
+  x_ = x0;
+  for (State* v : {&x1_, &xs_, &xe_, &xd_, &xr_, &fr_, &xg_}) v->resizeLike(x0);
+  triggered_.clear();
+  triggered_.reserve(static_cast<std::size_t>(std::max<Eigen::Index>(sys_.num_guards(mode), 8)));
+  zeno_.reset(opt_);
+  t0_ = t0;
+  next_sample_ = 0;
+  t_ = t0;
+
+  if (!start_mode(mode, t_, st))
+    return finish(r, Status::NonFiniteState, t_, x_, mode,
+                  "right-hand side or guards not finite " + detail::at_time(t_));
+  if (!emit_samples(obs, mode, t_, t_, st))
+    return finish(r, Status::StoppedByObserver, t_, x_, mode,
+                  "stopped by observer " + detail::at_time(t_));
+
+  // Step of the exponential method (inexact modes); carried across events.
+  Scalar h = opt_.initial_step > 0 ? opt_.initial_step : Scalar(1e-3);
+  bool after_reject = false;
+  long attempts = 0;
+  using std::pow;
+
+  while (t_ < t_end) {
+    if (attempts >= opt_.max_steps)
+      return finish(r, Status::MaxSteps, t_, x_, mode,
+                    "max_steps " + std::to_string(opt_.max_steps) + " reached " +
+                        detail::at_time(t_));
+    ++attempts;
+    Scalar t1 = 0, err = 0;
+    if (exact_) {
+      Scalar hs = delta_;
+      t1 = t_ + hs;
+      if (!(t_end - t1 > Scalar(0.01) * hs)) {
+        t1 = t_end;
+        hs = t_end - t_;
+      }
+      if (hs == delta_ && flow_.has_ladder()) {
+        y1_.noalias() = flow_.propagator() * y_;
+        ++work_.matvecs;
+      } else {
+        y1_ = y_;
+        flow_.expv(hs, y1_, work_);
+      }
+      flow_.set_clock(t1, y1_);
+      if (!quadrature(mode, t_, y_, t1, y1_, st))
+        return finish(r, Status::NonFiniteState, t_, x_, mode,
+                      "quadrature right-hand side not finite " + detail::at_time(t_));
+    } else {
+      h = std::min({h, opt_.max_step, guarded_ ? delta_ : opt_.max_step});
+      t1 = t_ + h;
+      if (t_end - t1 <= Scalar(0.01) * h) {
+        t1 = t_end;
+        h = t_end - t_;
+      }
+      const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t_));
+      err = lawson_.step(
+          flow_,
+          [&](Scalar tt, const Vector& y, Vector& out) { return remainder(mode, tt, y, out, st); },
+          t_, y_, r_, h, y1_, r1_, opt_.rtol, opt_.atol, work_);
+      if (std::isnan(err) || !detail::all_finite(y1_) || err > Scalar(1)) {
+        ++st.rejected_steps;
+        const bool bad = std::isnan(err) || !detail::all_finite(y1_);
+        h *= bad ? Scalar(0.5)
+                 : std::max(Scalar(0.2), opt_.safety * pow(err, Scalar(-1) / Scalar(5)));
+        after_reject = true;
+        if (h < hmin)
+          return finish(r, bad ? Status::NonFiniteState : Status::StepSizeUnderflow, t_, x_, mode,
+                        (bad ? std::string("right-hand side or state became non-finite ")
+                             : "step size " + detail::short_number(h) + " fell below min_step " +
+                                   detail::short_number(hmin) + " ") +
+                            detail::at_time(t_));
+        continue;
+      }
+    }
+    x1_ = y1_.head(nx_);
+    if (!detail::all_finite(x1_))
+      return finish(r, Status::NonFiniteState, t_, x_, mode,
+                    "state became non-finite " + detail::at_time(t1));
+    ++st.accepted_steps;
+    if (exact_) ++work_.exact_steps;
+    else ++work_.exponential_steps;
+
+    bool event = false;
+    if (guarded_) {
+      eval_guards(mode, t1, x1_, gb_, st);
+      if (exact_) {
+        if (!derivative(mode, t1, y1_, x1_, xd_, st))
+          return finish(r, Status::NonFiniteState, t1, x1_, mode,
+                        "right-hand side not finite " + detail::at_time(t1));
+      } else {
+        flow_.rate(y1_, xd_, work_);
+        xd_ += r1_.head(nx_);
+      }
+      guard_slopes(mode, t1, x1_, xd_, sb_, st);
+      if (!detail::all_finite(gb_) || !detail::all_finite(sb_))
+        return finish(r, Status::NonFiniteState, t1, x1_, mode,
+                      "guards not finite " + detail::at_time(t1));
+      event = find_event(mode, t1, st);
+    }
+
+    if (event) {
+      if (!emit_samples(obs, mode, te_, t1, st))
+        return finish(r, Status::StoppedByObserver, te_, xe_, mode,
+                      "stopped by observer " + detail::at_time(te_));
+      if (!obs.on_step(te_, xe_, mode))
+        return finish(r, Status::StoppedByObserver, te_, xe_, mode,
+                      "stopped by observer " + detail::at_time(te_));
+      bool immediate = false;
+      for (Eigen::Index i : triggered_) immediate = immediate || monitor_.disarmed(i);
+      t_ = te_;
+      x_ = xe_;
+      const Mode from = mode;
+      TransitionAction action = sys_.transition(mode, triggered_, t_, x_);
+      ++st.events;
+      detail::notify_event(obs, EventRecord<Scalar, Mode>{t_, from, mode, &triggered_}, x_);
+      if (action.stop)
+        return finish(r, Status::StoppedBySystem, t_, x_, mode,
+                      "stopped by system " + detail::at_time(t_) + ": " + action.reason);
+      std::string why;
+      if (!zeno_.record(t_, immediate, st.events, why))
+        return finish(r, Status::ZenoGuard, t_, x_, mode, std::move(why));
+      if (!start_mode(mode, t_, st))
+        return finish(r, Status::NonFiniteState, t_, x_, mode,
+                      "right-hand side or guards not finite after the transition " +
+                          detail::at_time(t_));
+      continue;
+    }
+
+    if (!emit_samples(obs, mode, t1, t1, st))
+      return finish(r, Status::StoppedByObserver, t1, x1_, mode,
+                    "stopped by observer " + detail::at_time(t1));
+    t_ = t1;
+    x_ = x1_;
+    y_.swap(y1_);
+    if (guarded_) {
+      ga_.swap(gb_);
+      sa_.swap(sb_);
+      monitor_.update_arming(ga_);
+    }
+    if (!obs.on_step(t_, x_, mode))
+      return finish(r, Status::StoppedByObserver, t_, x_, mode,
+                    "stopped by observer " + detail::at_time(t_));
+    if (!exact_) {
+      r_.swap(r1_);
+      if (linear_) {
+        // A_m may follow the state (the contact point moves): refresh, keeping the step.
+        if (!refresh_linear_part(mode, t_, false, st))
+          return finish(r, Status::NonFiniteState, t_, x_, mode,
+                        "right-hand side not finite " + detail::at_time(t_));
+        if (exact_) continue;  // the mode became exact
+      }
+      Scalar fac = err > 0 ? opt_.safety * pow(err, Scalar(-1) / Scalar(5)) : Scalar(5);
+      fac = std::min(Scalar(5), std::max(Scalar(0.2), fac));
+      if (after_reject) fac = std::min(fac, Scalar(1));
+      h *= fac;
+      after_reject = false;
+    }
+  }
+  return finish(r, Status::Success, t_, x_, mode, std::string());
+}
+
+}  // namespace stickslip
