@@ -27,7 +27,8 @@ function(stickslip_add_gtest name)
     set_target_properties(${name} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 0)
   endif()
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
-  target_link_libraries(${name} PRIVATE stickslip_project_options GTest::gtest GTest::gtest_main)
+  target_link_libraries(${name} PRIVATE stickslip_project_options ${STICKSLIP_OWN_TARGET} GTest::gtest
+                                        GTest::gtest_main)
   gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} TIMEOUT ${ARG_TIMEOUT}
                        DISCOVERY_TIMEOUT 60)
 endfunction()

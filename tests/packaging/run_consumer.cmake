@@ -33,3 +33,6 @@ run(${CMAKE_COMMAND} -S ${src} -B ${root}/build -DCMAKE_CXX_COMPILER=${CXX_COMPI
     -DCMAKE_BUILD_TYPE= ${extra})
 run(${CMAKE_COMMAND} --build ${root}/build)
 run(${root}/build/consumer)
+if(MODE STREQUAL "find_package")
+  run(${root}/build/consumer_compiled)
+endif()

@@ -409,3 +409,13 @@ ModalBasis<Scalar> compute_modes(const AssembledFrame<Scalar>& frame,
 }
 
 }  // namespace stickslip
+
+#ifdef STICKSLIP_COMPILED
+// The compiled mode: compute_modes<double> is instantiated once, in stickslip::compiled
+// (src/compute_modes.cpp).
+namespace stickslip {
+extern template ModalBasis<double> compute_modes<double>(const AssembledFrame<double>&,
+                                                         const ModalOptions<double>&,
+                                                         ModalSolveReport<double>*);
+}  // namespace stickslip
+#endif

@@ -163,85 +163,7 @@ class FrictionDampedSystem {
   /// Builds the system; throws std::invalid_argument on a bad damper, load or option.
   FrictionDampedSystem(const FrameModel<Scalar>& model, const ModalBasis<Scalar>& basis,
                        std::vector<Damper> dampers, std::vector<Load> loads = {},
-                       ModelOptions<Scalar> options = {})
-      : dampers_(std::move(dampers)), loads_(std::move(loads)), options_(options) {
-    n_ = basis.size();
-    D_ = static_cast<Index>(dampers_.size());
-    if (n_ < 1) detail::throw_invalid("FrictionDampedSystem", "basis must hold >= 1 mode", n_);
-    if (Modes != Eigen::Dynamic && n_ != Modes)
-      detail::throw_invalid("FrictionDampedSystem",
-                            "basis must hold exactly Modes = " + std::to_string(Modes) +
-                                " modes (use ModalBasis::truncated), basis size",
-                            n_);
-    if (D_ > DamperStates::max_dampers)
-      detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
-    if (!options_.moving_contact) options_.convective_terms = false;
-
-    omega2_ = basis.omega().array().square().matrix();
-    // c_j of the basis (2 zeta_j omega_j, or alpha + beta omega_j^2 with Rayleigh damping, which
-    // keeps alpha on a rigid-body mode): not recomputed from zeta, which is 0 for a rigid mode.
-    modal_damping_ = basis.damping_coefficients();
-
-    // One MemberShapes per member touched by a damper or a load.
-    auto shapes_for = [&](Index member) -> Index {
-      for (std::size_t s = 0; s < shape_members_.size(); ++s)
-        if (shape_members_[s] == member) return static_cast<Index>(s);
-      if (member < 0 || member >= model.num_members())
-        detail::throw_invalid("FrictionDampedSystem", "member index does not exist", member);
-      // The model watches the member ends itself (guards on X, policy Throw), so the shapes
-      // extrapolate for the trial stages an integrator may take just past an end.
-      shapes_.emplace_back(model, member, basis,
-                           options_.end_policy == EndPolicy::Clamp ? EndPolicy::Clamp : EndPolicy::Extrapolate);
-      shape_members_.push_back(member);
-      {  // the member's nodal values transposed (3 per node x n): an element's 6 x n block has
-         // each mode's six values contiguous, for the projections of moving_damper()
-        const Shapes& sh = shapes_.back();
-        Matrix t(3 * (sh.num_elements() + 1), n_);
-        for (Index el = 0; el < sh.num_elements(); ++el)
-          t.template middleRows<6>(3 * el) = sh.element_block(el).transpose();
-        nodal_t_.push_back(std::move(t));
-      }
-      shape_direction_.emplace_back(model.member(member).cos, model.member(member).sin);
-      return static_cast<Index>(shapes_.size() - 1);
-    };
-
-    for (Index i = 0; i < D_; ++i) {
-      const Damper& d = dampers_[static_cast<std::size_t>(i)];
-      d.validate(i);
-      const Index s = shapes_for(d.member);
-      const Shapes& sh = shapes_[static_cast<std::size_t>(s)];
-      if (!(d.contact_coordinate >= Scalar(0) && d.contact_coordinate <= sh.length()))
-        detail::throw_invalid("PointDamper[" + std::to_string(i) + "]",
-                              "contact_coordinate must lie on member " + std::to_string(d.member) +
-                                  " (valid range [0, " + detail::format_value(sh.length()) + "])",
-                              d.contact_coordinate);
-      damper_shape_.push_back(s);
-      has_stick_.push_back(detail::law_has_stick_state(d.law));
-      // A CoulombLaw's kinetic coefficient does not depend on the speed: read once here, so
-      // that the slip rows need no dispatch on the law.
-      kinetic_constant_.push_back(detail::with_law(d.law, [](const auto& l) -> Scalar {
-        if constexpr (std::is_same_v<std::decay_t<decltype(l)>, CoulombLaw<Scalar>>)
-          return l.kinetic_coefficient(Scalar(0));
-        else
-          return std::numeric_limits<Scalar>::quiet_NaN();
-      }));
-      inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
-    }
-
-    load_psi_.resize(n_, static_cast<Index>(loads_.size()));
-    for (std::size_t l = 0; l < loads_.size(); ++l) {
-      const Load& load = loads_[l];
-      load.validate(static_cast<Index>(l));
-      const std::size_t s = static_cast<std::size_t>(shapes_for(load.member));
-      load_psi_.col(static_cast<Index>(l)) = load_vector(s, load);
-    }
-
-    allocate_workspace();
-    if (!options_.moving_contact) {
-      // Fixed contact points: the shapes never change; evaluate them once.
-      for (Index i = 0; i < D_; ++i) evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
-    }
-  }
+                       ModelOptions<Scalar> options = {});
 
   // ---- layout ---------------------------------------------------------------------------------
   Index num_modes() const noexcept { return n_; }
@@ -397,67 +319,17 @@ class FrictionDampedSystem {
   /// Event handling: lift-off and a contact leaving its member stop the run with a reason;
   /// stick/slip guards pick a consistent set of new contact states for all dampers (see
   /// docs/model.md) and reset a new stick's sliding velocity to exactly zero.
-  TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x) {
-    std::vector<Index>& involved = involved_;
-    involved.clear();
-    for (Index idx : triggered) {
-      Index i = 0, local = idx;
-      for (; i < D_; ++i) {
-        const Index nc = guards_of(mode, i);
-        if (local < nc) break;
-        local -= nc;
-      }
-      STICKSLIP_ASSERT(i < D_);
-      const Index nc = contact_guards_of(mode, i);
-      const bool lift = watch_lift_off(i) && local == nc - 1;
-      if (local >= nc) return stop(StopReason::LeftMember, i, t, x, mode);
-      if (lift) return stop(StopReason::LiftOff, i, t, x, mode);
-      if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
-    }
-    return resolve(mode, involved, t, x) ? TransitionAction::proceed()
-                                         : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
-  }
+  TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x);
 
   /// A consistent initial mode for state x at t, starting from the requested states; it also
   /// reports lift-off at t0 (N <= 0) through `stop_reason()`. Returns false when none exists.
   /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
-  bool make_consistent(Mode& mode, Scalar t, State& x) {
-    validate_state(mode, x, "FrictionDampedSystem::make_consistent");
-    std::vector<Index>& involved = involved_;
-    involved.clear();
-    for (Index i = 0; i < D_; ++i)
-      if (mode[i] == ContactState::Stick) involved.push_back(i);
-    if (!resolve(mode, involved, t, x)) return false;
-    {
-      const Evaluation& e = evaluate(mode, t, x);
-      for (Index i = 0; i < D_; ++i) {
-        // A constant normal load N0 = 0 never presses an exact-law damper: no contact, ever.
-        const std::size_t iu = static_cast<std::size_t>(i);
-        const bool unpressed = !inertial_[iu] && has_stick_[iu];
-        if ((watch_lift_off(i) || unpressed) && !(e.N[i] > Scalar(0))) {
-          stop(StopReason::LiftOff, i, t, x, mode);
-          return false;
-        }
-      }
-    }
-    return true;
-  }
+  bool make_consistent(Mode& mode, Scalar t, State& x);
 
   // ---- outputs --------------------------------------------------------------------------------
   /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call.
   /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
-  const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x) {
-    if (!(cache_valid_ && t == cache_t_ && mode == cache_mode_ && x.size() == cache_x_.size() &&
-          x == cache_x_)) {
-      validate_state(mode, x, "FrictionDampedSystem::evaluate");
-      solve(mode, t, x);
-      cache_valid_ = true;
-      cache_t_ = t;
-      cache_mode_ = mode;
-      cache_x_ = x;
-    }
-    return eval_;
-  }
+  const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x);
 
   /// How the most recent solve (the most recent evaluate() that missed its cache) was done.
   const SolveInfo& last_solve() const noexcept { return solve_info_; }
@@ -470,26 +342,7 @@ class FrictionDampedSystem {
 
   /// Mechanical energy: modal kinetic + strain energy, the dampers' kinetic energy along u
   /// (and along w with an inertial normal load), spring energy, and the preload's potential.
-  Scalar mechanical_energy(const Mode& mode, Scalar t, const State& x) {
-    const Evaluation& e = evaluate(mode, t, x);
-    const auto q = x.head(n_);
-    const auto qd = x.segment(n_, n_);
-    Scalar E = Scalar(0.5) * qd.squaredNorm() + Scalar(0.5) * q.dot(omega2_.cwiseProduct(q));
-    for (Index i = 0; i < D_; ++i) {
-      const Damper& d = dampers_[static_cast<std::size_t>(i)];
-      const Scalar m = d.effective_mass(), k = d.effective_stiffness();
-      const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
-      if (options_.moving_contact) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
-      const Scalar y = q.dot(C_.col(i));
-      E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
-      if (inertial_[static_cast<std::size_t>(i)]) {
-        Scalar yd = qd.dot(C_.col(i));
-        if (options_.moving_contact) yd += e.slope[i] * e.V[i];
-        E += Scalar(0.5) * m * yd * yd;
-      }
-    }
-    return E;
-  }
+  Scalar mechanical_energy(const Mode& mode, Scalar t, const State& x);
 
   /// Energy balance at (mode, t, x) against the mechanical energy E0 of the run's start.
   /// Requires the energy audit option (throws std::invalid_argument otherwise).
@@ -526,58 +379,7 @@ class FrictionDampedSystem {
   /// changes when the mode, a frozen X or a frozen slip coefficient changes. Returns false when
   /// the evaluation at (t, x) is not finite. Allocates nothing once lp has the sizes of the mode
   /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
-  bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp) {
-    if (x.size() != state_size())
-      detail::throw_invalid("FrictionDampedSystem::linear_part", "x must have state_size() entries, size", x.size());
-    if (mode.size() != D_)
-      detail::throw_invalid("FrictionDampedSystem::linear_part", "mode must hold one state per damper, size",
-                            mode.size());
-    const Evaluation& e = evaluate(mode, t, x);
-    if (!e.finite) return false;
-    if (lp_xs_.size() != state_size()) allocate_linear_part_workspace();
-    using std::isnan;
-    bool exact = true, moving_slip = false;
-    for (Index i = 0; i < D_; ++i) {
-      const std::size_t iu = static_cast<std::size_t>(i);
-      const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
-      lp_X_[i] = e.X[i];
-      lp_mu_[i] = stuck ? Scalar(0) : slip_coefficient(i, mode[i], e.V[i]);
-      if (stuck) continue;
-      moving_slip = moving_slip || options_.moving_contact;
-      exact = exact && !options_.moving_contact && !isnan(kinetic_constant_[iu]);
-    }
-    for (const Load& l : loads_) exact = exact && !l.time_function;
-
-    const bool same = lp_key_valid_ && mode == lp_mode_ && lp_X_ == lp_key_X_ && lp_mu_ == lp_key_mu_;
-    if (!same) {
-      ++lp_version_;
-      lp_mode_ = mode;
-      lp_key_X_ = lp_X_;
-      lp_key_mu_ = lp_mu_;
-      lp_key_valid_ = true;
-      lp_cached_ = false;
-    }
-    if (lp_cached_) {  // an exact mode depends on its key only
-      lp = lp_cache_;
-      return true;
-    }
-    linear_part_by_probes(mode, exact, moving_slip, lp);
-    lp.exact = exact;
-    lp.version = lp_version_;
-    if (exact) {
-      lp_cache_ = lp;
-      lp_cached_ = true;
-      return true;
-    }
-    // r_m(t, x) = f(t, x) - A x_L - b(t) into b0, so that the remainder vanishes at x.
-    const Evaluation& ex = evaluate(mode, t, x);
-    linear_derivative(ex, x, lp_f_);
-    lp.load(t, lp_b_);
-    lp_f_ -= lp_b_;
-    lp_f_.noalias() -= lp.A * x.head(linear_size());
-    lp.b0 += lp_f_;
-    return true;
-  }
+  bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
 
 
  private:
@@ -1467,4 +1269,239 @@ class FrictionDampedSystem {
   Index stop_damper_ = -1;
 };
 
+// ---- members defined out of the class: not implicitly inline, so that the compiled mode can
+// declare FrictionDampedSystem<double> extern and instantiate them once (docs/compiled.md) ----
+
+template <class Scalar_, class Law_, int Modes>
+FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameModel<Scalar>& model,
+                                                                 const ModalBasis<Scalar>& basis,
+                                                                 std::vector<Damper> dampers,
+                                                                 std::vector<Load> loads,
+                                                                 ModelOptions<Scalar> options)
+    : dampers_(std::move(dampers)), loads_(std::move(loads)), options_(options) {
+  n_ = basis.size();
+  D_ = static_cast<Index>(dampers_.size());
+  if (n_ < 1) detail::throw_invalid("FrictionDampedSystem", "basis must hold >= 1 mode", n_);
+  if (Modes != Eigen::Dynamic && n_ != Modes)
+    detail::throw_invalid("FrictionDampedSystem",
+                          "basis must hold exactly Modes = " + std::to_string(Modes) +
+                              " modes (use ModalBasis::truncated), basis size",
+                          n_);
+  if (D_ > DamperStates::max_dampers)
+    detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
+  if (!options_.moving_contact) options_.convective_terms = false;
+
+  omega2_ = basis.omega().array().square().matrix();
+  // c_j of the basis (2 zeta_j omega_j, or alpha + beta omega_j^2 with Rayleigh damping, which
+  // keeps alpha on a rigid-body mode): not recomputed from zeta, which is 0 for a rigid mode.
+  modal_damping_ = basis.damping_coefficients();
+
+  // One MemberShapes per member touched by a damper or a load.
+  auto shapes_for = [&](Index member) -> Index {
+    for (std::size_t s = 0; s < shape_members_.size(); ++s)
+      if (shape_members_[s] == member) return static_cast<Index>(s);
+    if (member < 0 || member >= model.num_members())
+      detail::throw_invalid("FrictionDampedSystem", "member index does not exist", member);
+    // The model watches the member ends itself (guards on X, policy Throw), so the shapes
+    // extrapolate for the trial stages an integrator may take just past an end.
+    shapes_.emplace_back(model, member, basis,
+                         options_.end_policy == EndPolicy::Clamp ? EndPolicy::Clamp : EndPolicy::Extrapolate);
+    shape_members_.push_back(member);
+    {  // the member's nodal values transposed (3 per node x n): an element's 6 x n block has
+       // each mode's six values contiguous, for the projections of moving_damper()
+      const Shapes& sh = shapes_.back();
+      Matrix t(3 * (sh.num_elements() + 1), n_);
+      for (Index el = 0; el < sh.num_elements(); ++el)
+        t.template middleRows<6>(3 * el) = sh.element_block(el).transpose();
+      nodal_t_.push_back(std::move(t));
+    }
+    shape_direction_.emplace_back(model.member(member).cos, model.member(member).sin);
+    return static_cast<Index>(shapes_.size() - 1);
+  };
+
+  for (Index i = 0; i < D_; ++i) {
+    const Damper& d = dampers_[static_cast<std::size_t>(i)];
+    d.validate(i);
+    const Index s = shapes_for(d.member);
+    const Shapes& sh = shapes_[static_cast<std::size_t>(s)];
+    if (!(d.contact_coordinate >= Scalar(0) && d.contact_coordinate <= sh.length()))
+      detail::throw_invalid("PointDamper[" + std::to_string(i) + "]",
+                            "contact_coordinate must lie on member " + std::to_string(d.member) +
+                                " (valid range [0, " + detail::format_value(sh.length()) + "])",
+                            d.contact_coordinate);
+    damper_shape_.push_back(s);
+    has_stick_.push_back(detail::law_has_stick_state(d.law));
+    // A CoulombLaw's kinetic coefficient does not depend on the speed: read once here, so
+    // that the slip rows need no dispatch on the law.
+    kinetic_constant_.push_back(detail::with_law(d.law, [](const auto& l) -> Scalar {
+      if constexpr (std::is_same_v<std::decay_t<decltype(l)>, CoulombLaw<Scalar>>)
+        return l.kinetic_coefficient(Scalar(0));
+      else
+        return std::numeric_limits<Scalar>::quiet_NaN();
+    }));
+    inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
+  }
+
+  load_psi_.resize(n_, static_cast<Index>(loads_.size()));
+  for (std::size_t l = 0; l < loads_.size(); ++l) {
+    const Load& load = loads_[l];
+    load.validate(static_cast<Index>(l));
+    const std::size_t s = static_cast<std::size_t>(shapes_for(load.member));
+    load_psi_.col(static_cast<Index>(l)) = load_vector(s, load);
+  }
+
+  allocate_workspace();
+  if (!options_.moving_contact) {
+    // Fixed contact points: the shapes never change; evaluate them once.
+    for (Index i = 0; i < D_; ++i) evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
+  }
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const TriggeredGuards& triggered,
+                                                            Scalar t, State& x) -> TransitionAction {
+  std::vector<Index>& involved = involved_;
+  involved.clear();
+  for (Index idx : triggered) {
+    Index i = 0, local = idx;
+    for (; i < D_; ++i) {
+      const Index nc = guards_of(mode, i);
+      if (local < nc) break;
+      local -= nc;
+    }
+    STICKSLIP_ASSERT(i < D_);
+    const Index nc = contact_guards_of(mode, i);
+    const bool lift = watch_lift_off(i) && local == nc - 1;
+    if (local >= nc) return stop(StopReason::LeftMember, i, t, x, mode);
+    if (lift) return stop(StopReason::LiftOff, i, t, x, mode);
+    if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
+  }
+  return resolve(mode, involved, t, x) ? TransitionAction::proceed()
+                                       : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Scalar t, State& x) -> bool {
+  validate_state(mode, x, "FrictionDampedSystem::make_consistent");
+  std::vector<Index>& involved = involved_;
+  involved.clear();
+  for (Index i = 0; i < D_; ++i)
+    if (mode[i] == ContactState::Stick) involved.push_back(i);
+  if (!resolve(mode, involved, t, x)) return false;
+  {
+    const Evaluation& e = evaluate(mode, t, x);
+    for (Index i = 0; i < D_; ++i) {
+      // A constant normal load N0 = 0 never presses an exact-law damper: no contact, ever.
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const bool unpressed = !inertial_[iu] && has_stick_[iu];
+      if ((watch_lift_off(i) || unpressed) && !(e.N[i] > Scalar(0))) {
+        stop(StopReason::LiftOff, i, t, x, mode);
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::evaluate(const Mode& mode, Scalar t, const State& x)
+    -> const Evaluation& {
+  if (!(cache_valid_ && t == cache_t_ && mode == cache_mode_ && x.size() == cache_x_.size() &&
+        x == cache_x_)) {
+    validate_state(mode, x, "FrictionDampedSystem::evaluate");
+    solve(mode, t, x);
+    cache_valid_ = true;
+    cache_t_ = t;
+    cache_mode_ = mode;
+    cache_x_ = x;
+  }
+  return eval_;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::mechanical_energy(const Mode& mode, Scalar t,
+                                                                   const State& x) -> Scalar {
+  const Evaluation& e = evaluate(mode, t, x);
+  const auto q = x.head(n_);
+  const auto qd = x.segment(n_, n_);
+  Scalar E = Scalar(0.5) * qd.squaredNorm() + Scalar(0.5) * q.dot(omega2_.cwiseProduct(q));
+  for (Index i = 0; i < D_; ++i) {
+    const Damper& d = dampers_[static_cast<std::size_t>(i)];
+    const Scalar m = d.effective_mass(), k = d.effective_stiffness();
+    const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
+    if (options_.moving_contact) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
+    const Scalar y = q.dot(C_.col(i));
+    E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
+    if (inertial_[static_cast<std::size_t>(i)]) {
+      Scalar yd = qd.dot(C_.col(i));
+      if (options_.moving_contact) yd += e.slope[i] * e.V[i];
+      E += Scalar(0.5) * m * yd * yd;
+    }
+  }
+  return E;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, Scalar t, const State& x,
+                                                             LinearPart<Scalar>& lp) -> bool {
+  if (x.size() != state_size())
+    detail::throw_invalid("FrictionDampedSystem::linear_part", "x must have state_size() entries, size", x.size());
+  if (mode.size() != D_)
+    detail::throw_invalid("FrictionDampedSystem::linear_part", "mode must hold one state per damper, size",
+                          mode.size());
+  const Evaluation& e = evaluate(mode, t, x);
+  if (!e.finite) return false;
+  if (lp_xs_.size() != state_size()) allocate_linear_part_workspace();
+  using std::isnan;
+  bool exact = true, moving_slip = false;
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+    lp_X_[i] = e.X[i];
+    lp_mu_[i] = stuck ? Scalar(0) : slip_coefficient(i, mode[i], e.V[i]);
+    if (stuck) continue;
+    moving_slip = moving_slip || options_.moving_contact;
+    exact = exact && !options_.moving_contact && !isnan(kinetic_constant_[iu]);
+  }
+  for (const Load& l : loads_) exact = exact && !l.time_function;
+
+  const bool same = lp_key_valid_ && mode == lp_mode_ && lp_X_ == lp_key_X_ && lp_mu_ == lp_key_mu_;
+  if (!same) {
+    ++lp_version_;
+    lp_mode_ = mode;
+    lp_key_X_ = lp_X_;
+    lp_key_mu_ = lp_mu_;
+    lp_key_valid_ = true;
+    lp_cached_ = false;
+  }
+  if (lp_cached_) {  // an exact mode depends on its key only
+    lp = lp_cache_;
+    return true;
+  }
+  linear_part_by_probes(mode, exact, moving_slip, lp);
+  lp.exact = exact;
+  lp.version = lp_version_;
+  if (exact) {
+    lp_cache_ = lp;
+    lp_cached_ = true;
+    return true;
+  }
+  // r_m(t, x) = f(t, x) - A x_L - b(t) into b0, so that the remainder vanishes at x.
+  const Evaluation& ex = evaluate(mode, t, x);
+  linear_derivative(ex, x, lp_f_);
+  lp.load(t, lp_b_);
+  lp_f_ -= lp_b_;
+  lp_f_.noalias() -= lp.A * x.head(linear_size());
+  lp.b0 += lp_f_;
+  return true;
+}
+
 }  // namespace stickslip
+
+#ifdef STICKSLIP_COMPILED
+// The compiled mode: FrictionDampedSystem<double> (dynamic modes, the default law variant) is
+// instantiated once, in stickslip::compiled (src/friction_damped_system.cpp).
+namespace stickslip {
+extern template class FrictionDampedSystem<double>;
+}  // namespace stickslip
+#endif

@@ -5,6 +5,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/ode.hpp"
 #include "stickslip/ode/exact_linear_stepper.hpp"
+#include "stickslip/ode/observer_ref.hpp"
 
 #include <cmath>
 #include <complex>
@@ -120,7 +121,82 @@ void require_rk4_stable(const Rates& rates, Scalar h) {
 
 }  // namespace detail
 
-/// Integrates `system` from (t0, x0) in `mode` to t_end with the chosen integrator.
+/// The result of simulate() on `System`.
+template <class System>
+using SimulationResult =
+    HybridResult<typename System::Scalar, typename System::State, typename System::Mode>;
+
+/// The observer reference simulate() passes to the steppers (ObserverRef).
+template <class System>
+using SimulationObserver =
+    ObserverRef<typename System::Scalar, typename System::State, typename System::Mode>;
+
+namespace detail {
+
+/// One run of HybridStepper<System, Method> (the part of simulate() compiled once per system type
+/// and method, for every observer; instantiated ahead of time by stickslip::compiled).
+template <class System, class Method>
+SimulationResult<System> simulate_with(System& system, typename System::Mode mode,
+                                       typename System::Scalar t0, const typename System::State& x0,
+                                       typename System::Scalar t_end,
+                                       const StepperOptions<typename System::Scalar>& options,
+                                       SimulationObserver<System> observer) {
+  HybridStepper<System, Method> stepper(system, options);
+  return stepper.integrate(std::move(mode), t0, x0, t_end, observer);
+}
+
+/// One run of ExactLinearStepper<System>; a system without linear_part gets
+/// std::invalid_argument naming options.integrator.
+template <class System>
+SimulationResult<System> simulate_exponential(System& system, typename System::Mode mode,
+                                              typename System::Scalar t0,
+                                              const typename System::State& x0,
+                                              typename System::Scalar t_end,
+                                              const StepperOptions<typename System::Scalar>& options,
+                                              SimulationObserver<System> observer) {
+  if constexpr (has_linear_part_v<System>) {
+    ExactLinearStepper<System> stepper(system, options);
+    return stepper.integrate(std::move(mode), t0, x0, t_end, observer);
+  } else {
+    (void)system, (void)mode, (void)t0, (void)x0, (void)t_end, (void)options, (void)observer;
+    throw_invalid("simulate", "options.integrator Exponential needs a system with linear_part",
+                  std::string(to_string(Integrator::Exponential)));
+  }
+}
+
+/// simulate() after its observer became a SimulationObserver: checks, then the chosen method.
+template <class System>
+SimulationResult<System> simulate_dispatch(System& system, typename System::Mode mode,
+                                           typename System::Scalar t0,
+                                           const typename System::State& x0,
+                                           typename System::Scalar t_end,
+                                           const RunOptions<typename System::Scalar>& options,
+                                           SimulationObserver<System> observer) {
+  if constexpr (has_validate_state<System>::value) system.validate_state(mode, x0, "simulate");
+  switch (options.integrator) {
+    case Integrator::RungeKutta4:
+      if constexpr (has_linear_rates<System>::value) {
+        if (options.check_stability_limit && options.stepper.fixed_step > 0)
+          require_rk4_stable(system.linear_rates(), options.stepper.fixed_step);
+      }
+      return simulate_with<System, RungeKutta4>(system, std::move(mode), t0, x0, t_end,
+                                                options.stepper, observer);
+    case Integrator::Rosenbrock23:
+      return simulate_with<System, Rosenbrock23>(system, std::move(mode), t0, x0, t_end,
+                                                 options.stepper, observer);
+    case Integrator::Exponential:
+      return simulate_exponential(system, std::move(mode), t0, x0, t_end, options.stepper, observer);
+    case Integrator::DormandPrince54: break;
+  }
+  return simulate_with<System, DormandPrince54>(system, std::move(mode), t0, x0, t_end,
+                                                options.stepper, observer);
+}
+
+}  // namespace detail
+
+/// Integrates `system` from (t0, x0) in `mode` to t_end with the chosen integrator, calling
+/// `observer` (any observer of docs/ode.md, passed on as an ObserverRef, so that the steppers are
+/// compiled once per system type whatever the observer).
 /// With RungeKutta4 and a system that reports linear_rates() (FrictionDampedSystem), a fixed step
 /// above the stability limit of one of those rates throws std::invalid_argument before any step
 /// (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
@@ -128,38 +204,27 @@ void require_rk4_stable(const Rates& rates, Scalar h) {
 /// Integrator::Exponential throws std::invalid_argument ("options.integrator") for a system
 /// without linear_part.
 template <class System, class Observer>
-HybridResult<typename System::Scalar, typename System::State, typename System::Mode> simulate(
-    System& system, typename System::Mode mode, typename System::Scalar t0,
-    const typename System::State& x0, typename System::Scalar t_end,
-    const RunOptions<typename System::Scalar>& options, Observer& observer) {
-  if constexpr (detail::has_validate_state<System>::value) system.validate_state(mode, x0, "simulate");
-  switch (options.integrator) {
-    case Integrator::RungeKutta4: {
-      if constexpr (detail::has_linear_rates<System>::value) {
-        if (options.check_stability_limit && options.stepper.fixed_step > 0)
-          detail::require_rk4_stable(system.linear_rates(), options.stepper.fixed_step);
-      }
-      HybridStepper<System, RungeKutta4> stepper(system, options.stepper);
-      return stepper.integrate(mode, t0, x0, t_end, observer);
-    }
-    case Integrator::Rosenbrock23: {
-      HybridStepper<System, Rosenbrock23> stepper(system, options.stepper);
-      return stepper.integrate(mode, t0, x0, t_end, observer);
-    }
-    case Integrator::Exponential: {
-      if constexpr (has_linear_part_v<System>) {
-        ExactLinearStepper<System> stepper(system, options.stepper);
-        return stepper.integrate(mode, t0, x0, t_end, observer);
-      } else {
-        detail::throw_invalid("simulate",
-                              "options.integrator Exponential needs a system with linear_part",
-                              std::string(to_string(options.integrator)));
-      }
-    }
-    case Integrator::DormandPrince54: break;
-  }
-  HybridStepper<System, DormandPrince54> stepper(system, options.stepper);
-  return stepper.integrate(mode, t0, x0, t_end, observer);
+SimulationResult<System> simulate(System& system, typename System::Mode mode,
+                                  typename System::Scalar t0, const typename System::State& x0,
+                                  typename System::Scalar t_end,
+                                  const RunOptions<typename System::Scalar>& options,
+                                  Observer& observer) {
+  return detail::simulate_dispatch(system, std::move(mode), t0, x0, t_end, options,
+                                   SimulationObserver<System>(observer));
+}
+
+/// simulate() without an observer: the result (final state, status, statistics) only.
+template <class System>
+SimulationResult<System> simulate(System& system, typename System::Mode mode,
+                                  typename System::Scalar t0, const typename System::State& x0,
+                                  typename System::Scalar t_end,
+                                  const RunOptions<typename System::Scalar>& options = {}) {
+  NullObserver none;
+  return simulate(system, std::move(mode), t0, x0, t_end, options, none);
 }
 
 }  // namespace stickslip
+
+#ifdef STICKSLIP_COMPILED
+#include "stickslip/model/detail/compiled_simulate.hpp"
+#endif

@@ -23,17 +23,6 @@
 
 namespace stickslip {
 
-namespace detail {
-template <class O, class Rec, class X, class = void>
-struct has_on_event_with_state : std::false_type {};
-template <class O, class Rec, class X>
-struct has_on_event_with_state<
-    O, Rec, X,
-    std::void_t<decltype(std::declval<O&>().on_event(std::declval<const Rec&>(),
-                                                     std::declval<const X&>()))>>
-    : std::true_type {};
-}  // namespace detail
-
 /// Integrator of a hybrid system with event location.
 ///
 /// `System` models the hybrid system concept (`is_hybrid_system_v`); `Method` is one of the tags

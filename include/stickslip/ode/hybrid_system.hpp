@@ -93,6 +93,18 @@ struct EventRecord {
   const TriggeredGuards* triggered;     ///< guards that fired together (valid during the call)
 };
 
+namespace detail {
+/// Whether observer O has on_event(const Rec&, const X& x_after) (else on_event(const Rec&)).
+template <class O, class Rec, class X, class = void>
+struct has_on_event_with_state : std::false_type {};
+template <class O, class Rec, class X>
+struct has_on_event_with_state<
+    O, Rec, X,
+    std::void_t<decltype(std::declval<O&>().on_event(std::declval<const Rec&>(),
+                                                     std::declval<const X&>()))>>
+    : std::true_type {};
+}  // namespace detail
+
 /// Result of HybridStepper::integrate.
 template <class Scalar, class State, class Mode>
 struct HybridResult {

@@ -7,7 +7,6 @@
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/detail/step_control.hpp>
-#include <stickslip/ode/hybrid_stepper.hpp>  // detail::has_on_event_with_state
 #include <stickslip/ode/hybrid_system.hpp>
 #include <stickslip/ode/stepper_options.hpp>
 
