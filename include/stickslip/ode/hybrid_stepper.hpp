@@ -5,6 +5,7 @@
 /// bisection or by root finding on the dense output, and applying the system's transitions.
 
 #include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/run_bookkeeping.hpp>
 #include <stickslip/ode/detail/step_control.hpp>
 #include <stickslip/ode/dormand_prince54.hpp>
 #include <stickslip/ode/event_locator.hpp>
@@ -144,12 +145,7 @@ class HybridStepper {
 
   static Result finish(Result& r, Status s, Scalar t, const State& x, const Mode& m,
                        std::string message) {
-    r.status = s;
-    r.t = t;
-    r.x = x;
-    r.mode = m;
-    r.message = std::move(message);
-    return std::move(r);
+    return detail::finish_run(r, s, t, x, m, std::move(message));
   }
 
   System& sys_;
@@ -164,7 +160,7 @@ class HybridStepper {
   std::vector<GuardSet> guard_sets_;  // parked guard vectors, indexed by guard count
   TriggeredGuards triggered_;
   bool event_on_step_ = false;
-  std::vector<Scalar> event_ring_;
+  detail::ZenoGuard<Scalar> zeno_;
   Scalar t0_ = 0;
   long next_sample_ = 0;
   bool guarded_ = false;  // the current mode has guards (a mode without skips all guard work)
@@ -387,11 +383,7 @@ template <class Observer>
 auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,
                                               Observer& obs) -> Result {
   static const std::string where = "HybridStepper::integrate";
-  detail::require_finite(where, "t0", t0);
-  detail::require_finite(where, "t_end", t_end);
-  if (!(t_end >= t0)) detail::throw_invalid(where, "t_end must be >= t0", t_end);
-  if (x0.size() == 0) detail::throw_invalid(where, "x0 must not be empty", x0.size());
-  if (!x0.allFinite()) detail::throw_invalid(where, "x0 must be finite", x0.transpose());
+  detail::check_run_arguments(where, t0, x0, t_end);
   check_time_resolution(t0, t_end);
 
   Result r;
@@ -401,11 +393,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
   core_.initialize(x0);
   triggered_.clear();
   triggered_.reserve(static_cast<std::size_t>(std::max<Eigen::Index>(sys_.num_guards(mode), 8)));
-  const bool rate_cap = opt_.zeno_window > 0;
-  event_ring_.assign(rate_cap ? static_cast<std::size_t>(opt_.zeno_max_events) + 1 : 0,
-                     Scalar(0));
-  std::size_t ring_pos = 0;
-  long immediate_run = 0;
+  zeno_.reset(opt_);
   t0_ = t0;
   next_sample_ = 0;
 
@@ -494,31 +482,13 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       TransitionAction action = sys_.transition(mode, triggered_, t, x_);
       ++st.events;
       const EventRecord<Scalar, Mode> record{t, from, mode, &triggered_};
-      if constexpr (detail::has_on_event_with_state<Observer, EventRecord<Scalar, Mode>,
-                                                    State>::value) {
-        obs.on_event(record, x_);
-      } else {
-        obs.on_event(record);
-      }
+      detail::notify_event(obs, record, x_);
       if (action.stop)
         return finish(r, Status::StoppedBySystem, t, x_, mode,
                       "stopped by system " + detail::at_time(t) + ": " + action.reason);
-      immediate_run = immediate ? immediate_run + 1 : 0;
-      if (immediate_run > opt_.zeno_max_immediate_events)
-        return finish(r, Status::ZenoGuard, t, x_, mode,
-                      "Zeno guard: " + std::to_string(immediate_run) +
-                          " consecutive immediate events (a guard leaving zero straight into "
-                          "its triggering direction) " +
-                          detail::at_time(t));
-      if (rate_cap) {
-        event_ring_[ring_pos] = t;
-        ring_pos = (ring_pos + 1) % event_ring_.size();
-        if (st.events > opt_.zeno_max_events && t - event_ring_[ring_pos] <= opt_.zeno_window)
-          return finish(r, Status::ZenoGuard, t, x_, mode,
-                        "Zeno guard: more than " + std::to_string(opt_.zeno_max_events) +
-                            " events within " + detail::short_number(opt_.zeno_window) + " " +
-                            detail::at_time(t));
-      }
+      std::string zeno_reason;
+      if (!zeno_.record(t, immediate, st.events, zeno_reason))
+        return finish(r, Status::ZenoGuard, t, x_, mode, std::move(zeno_reason));
       if (!start_mode(mode, t, st))
         return finish(r, Status::NonFiniteState, t, x_, mode,
                       "right-hand side or guards not finite after the transition " +

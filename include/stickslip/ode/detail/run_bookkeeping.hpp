@@ -2,8 +2,7 @@
 /// \file run_bookkeeping.hpp
 /// \brief Pieces of a hybrid run that do not depend on the method: argument checks, the Zeno
 /// guard (consecutive immediate events, event-rate cap), the event notification of observers and
-/// the Result of a finished run. Used by ExactLinearStepper; HybridStepper has the same logic
-/// inline (candidate to share it).
+/// the Result of a finished run. Shared by HybridStepper and ExactLinearStepper.
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/detail/step_control.hpp>
