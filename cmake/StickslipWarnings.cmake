@@ -10,12 +10,17 @@ if(STICKSLIP_SANITIZE)
 endif()
 target_link_libraries(stickslip_project_options INTERFACE stickslip::stickslip)
 
-# stickslip_add_gtest(<name> LABEL <label> SOURCES <files...> [TIMEOUT s] [NO_UNITY])
+option(STICKSLIP_TEST_PCH
+       "Precompile GoogleTest, Eigen and stickslip's umbrella header once for the test executables" ON)
+
+# stickslip_add_gtest(<name> LABEL <label> SOURCES <files...> [TIMEOUT s] [NO_UNITY] [NO_PCH])
 # One GoogleTest executable whose tests CTest discovers, each carrying the component label.
 # With STICKSLIP_UNITY_TESTS (default ON) its sources compile as one unity translation unit,
-# unless NO_UNITY (sources whose file-local names clash).
+# unless NO_UNITY (sources whose file-local names clash). With STICKSLIP_TEST_PCH (default ON) it
+# reuses one precompiled header of GoogleTest + <stickslip/stickslip.hpp>, unless NO_PCH (sources
+# that must define macros before Eigen is included, e.g. EIGEN_RUNTIME_NO_MALLOC).
 function(stickslip_add_gtest name)
-  cmake_parse_arguments(ARG "NO_UNITY" "LABEL;TIMEOUT" "SOURCES" ${ARGN})
+  cmake_parse_arguments(ARG "NO_UNITY;NO_PCH" "LABEL;TIMEOUT" "SOURCES" ${ARGN})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
   endif()
@@ -29,6 +34,18 @@ function(stickslip_add_gtest name)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
   target_link_libraries(${name} PRIVATE stickslip_project_options ${STICKSLIP_OWN_TARGET} GTest::gtest
                                         GTest::gtest_main)
+  if(STICKSLIP_TEST_PCH AND NOT ARG_NO_PCH)
+    if(NOT TARGET stickslip_test_pch)
+      # The header is parsed once per build instead of once per test executable (~2-3 s each).
+      file(CONFIGURE OUTPUT ${PROJECT_BINARY_DIR}/stickslip_test_pch.cpp
+           CONTENT "// precompiled header of the test executables\n")
+      add_library(stickslip_test_pch OBJECT ${PROJECT_BINARY_DIR}/stickslip_test_pch.cpp)
+      target_link_libraries(stickslip_test_pch PRIVATE stickslip_project_options ${STICKSLIP_OWN_TARGET}
+                                                       GTest::gtest)
+      target_precompile_headers(stickslip_test_pch PRIVATE <gtest/gtest.h> <stickslip/stickslip.hpp>)
+    endif()
+    target_precompile_headers(${name} REUSE_FROM stickslip_test_pch)
+  endif()
   gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} TIMEOUT ${ARG_TIMEOUT}
                        DISCOVERY_TIMEOUT 60)
 endfunction()
