@@ -2,6 +2,7 @@
 /// \file model.hpp
 /// \brief Composition layer: friction-damped modal systems built from the five components.
 
+#include "stickslip/model/contact_point.hpp"
 #include "stickslip/model/damper_states.hpp"
 #include "stickslip/model/friction_damped_system.hpp"
 #include "stickslip/model/model_options.hpp"

@@ -396,7 +396,7 @@ class FrictionDampedSystem {
     return options_.watch_lift_off && inertial_[static_cast<std::size_t>(i)];
   }
   bool end_guards_of(const Mode& mode, Index i) const {
-    if (!options_.moving_contact || options_.end_policy != EndPolicy::Throw) return false;
+    if (!moving_[static_cast<std::size_t>(i)] || options_.end_policy != EndPolicy::Throw) return false;
     return !has_stick_[static_cast<std::size_t>(i)] || detail::is_slipping(mode[i]);
   }
   Index guards_of(const Mode& mode, Index i) const {
@@ -425,14 +425,15 @@ class FrictionDampedSystem {
   }
 
   /// Derivative of the state's first linear_size() components from an evaluation:
-  /// (q', q'', x_d', x_d'', V) - the X' = V rows only with a moving contact.
+  /// (q', q'', x_d', x_d'', X') - the X rows only when a contact moves: X' = V for a moving
+  /// contact, 0 for a fixed one.
   template <class Out>
   void linear_derivative(const Evaluation& e, const State& x, Out& d) const {
     d.template segment<Modes>(0, n_) = x.template segment<Modes>(n_, n_);
     d.template segment<Modes>(n_, n_) = modal(e.qdd);
     d.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
     d.segment(xd_offset(), D_) = e.xdd;
-    if (options_.moving_contact) d.segment(contact_offset(), D_) = e.V;
+    if (options_.moving_contact) d.segment(contact_offset(), D_) = e.V.cwiseProduct(moving_mask_);
   }
 
   Vector load_vector(std::size_t shape, const Load& load) const {
@@ -639,11 +640,11 @@ class FrictionDampedSystem {
     const auto q = x.template segment<Modes>(0, n);
     const auto qd = x.template segment<Modes>(n, n);
     Evaluation& e = eval_;
-    const bool moving = options_.moving_contact;
     num_unknowns_ = 0;
     for (Index i = 0; i < D; ++i) {
       const std::size_t iu = static_cast<std::size_t>(i);
       const Damper& dmp = dampers_[iu];
+      const bool moving = moving_[iu];
       if (moving) {
         const Scalar X = x[contact_offset() + i];
         e.X[i] = X;
@@ -716,7 +717,7 @@ class FrictionDampedSystem {
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       Scalar bq;
-      if (!Frozen && moving && !stuck) {  // b from moving_damper
+      if (!Frozen && moving_[iu] && !stuck) {  // b from moving_damper
         bq = modal(slip_b_.col(i)).dot(modal(e.qdd));
       } else {
         bq = C_.col(D + i).dot(e.qdd);
@@ -1170,7 +1171,7 @@ class FrictionDampedSystem {
     const auto qd = x.segment(n_, n_);
     for (Index i = 0; i < D_; ++i) {
       if (!has_stick_[static_cast<std::size_t>(i)] || mode[i] != ContactState::Stick) continue;
-      if (options_.moving_contact) evaluate_shapes(i, x[contact_offset() + i]);
+      if (moving_[static_cast<std::size_t>(i)]) evaluate_shapes(i, x[contact_offset() + i]);
       x[xd_offset() + i] = qd.dot(C_.col(D_ + i));
     }
   }
@@ -1189,7 +1190,7 @@ class FrictionDampedSystem {
       }
       case StopReason::LeftMember: {
         const std::size_t iu = static_cast<std::size_t>(i);
-        const Scalar X = options_.moving_contact ? x[contact_offset() + i] : dampers_[iu].contact_coordinate;
+        const Scalar X = moving_[iu] ? x[contact_offset() + i] : dampers_[iu].contact_coordinate;
         return TransitionAction::halt(
             "left member: the contact point of " + who + " reached the end of member " +
             std::to_string(dampers_[iu].member) + at + " (X = " + detail::format_value(X) +
@@ -1263,6 +1264,11 @@ class FrictionDampedSystem {
   std::uint64_t lp_version_ = 0;
   LinearPart<Scalar> lp_cache_;
 
+  // Per damper: its contact point moves (ModelOptions::moving_contact and PointDamper::contact_point),
+  // and the same as 1 / 0 for the X' rows.
+  std::vector<bool> moving_;
+  Vector moving_mask_;
+
   std::vector<ContactEvent> events_;
   std::vector<Index> involved_;
   StopReason stop_reason_ = StopReason::None;
@@ -1289,7 +1295,15 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
                           n_);
   if (D_ > DamperStates::max_dampers)
     detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
+  for (const Damper& d : dampers_) {
+    const bool moving = options_.moving_contact && d.contact_point == ContactPoint::Moving;
+    moving_.push_back(moving);
+  }
+  // The state carries contact coordinates when at least one contact moves.
+  options_.moving_contact = std::find(moving_.begin(), moving_.end(), true) != moving_.end();
   if (!options_.moving_contact) options_.convective_terms = false;
+  moving_mask_.resize(D_);
+  for (Index i = 0; i < D_; ++i) moving_mask_[i] = moving_[static_cast<std::size_t>(i)] ? Scalar(1) : Scalar(0);
 
   omega2_ = basis.omega().array().square().matrix();
   // c_j of the basis (2 zeta_j omega_j, or alpha + beta omega_j^2 with Rayleigh damping, which
@@ -1351,10 +1365,10 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
   }
 
   allocate_workspace();
-  if (!options_.moving_contact) {
-    // Fixed contact points: the shapes never change; evaluate them once.
-    for (Index i = 0; i < D_; ++i) evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
-  }
+  // Fixed contact points: the shapes never change; evaluate them once.
+  for (Index i = 0; i < D_; ++i)
+    if (!moving_[static_cast<std::size_t>(i)])
+      evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -1429,12 +1443,12 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::mechanical_energy(const Mode& m
     const Damper& d = dampers_[static_cast<std::size_t>(i)];
     const Scalar m = d.effective_mass(), k = d.effective_stiffness();
     const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
-    if (options_.moving_contact) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
+    if (moving_[static_cast<std::size_t>(i)]) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
     const Scalar y = q.dot(C_.col(i));
     E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
     if (inertial_[static_cast<std::size_t>(i)]) {
       Scalar yd = qd.dot(C_.col(i));
-      if (options_.moving_contact) yd += e.slope[i] * e.V[i];
+      if (moving_[static_cast<std::size_t>(i)]) yd += e.slope[i] * e.V[i];
       E += Scalar(0.5) * m * yd * yd;
     }
   }
@@ -1460,8 +1474,8 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
     lp_X_[i] = e.X[i];
     lp_mu_[i] = stuck ? Scalar(0) : slip_coefficient(i, mode[i], e.V[i]);
     if (stuck) continue;
-    moving_slip = moving_slip || options_.moving_contact;
-    exact = exact && !options_.moving_contact && !isnan(kinetic_constant_[iu]);
+    moving_slip = moving_slip || moving_[iu];
+    exact = exact && !moving_[iu] && !isnan(kinetic_constant_[iu]);
   }
   for (const Load& l : loads_) exact = exact && !l.time_function;
 

@@ -12,8 +12,11 @@ template <class Scalar>
 struct ModelOptions {
   /// Normal-load variation from the damper's vertical inertia (paper eqs 23-24) or constant N0.
   NormalLoad normal_load = NormalLoad::Inertial;
-  /// The contact point moves along the member with the relative slip (moving load, paper eq 10),
-  /// or stays at its initial coordinate.
+  /// The contact points move along the member with the relative slip (moving load, paper eq 10),
+  /// as far as each damper's PointDamper::contact_point allows (Moving by default), or all stay at
+  /// their initial coordinates (false overrides every damper). The state holds the contact
+  /// coordinates when at least one damper's contact moves; FrictionDampedSystem::options() then
+  /// reports moving_contact = true, else false.
   bool moving_contact = true;
   /// With a moving contact: keep the convective terms of the damper's vertical acceleration
   /// (2 q'^T psi_w' X' + q^T psi_w'' X'^2 + q^T psi_w' X'', paper eq 19).

@@ -5,6 +5,7 @@
 #include "stickslip/beam/ids.hpp"
 #include "stickslip/contact.hpp"
 #include "stickslip/detail/validate.hpp"
+#include "stickslip/model/contact_point.hpp"
 #include "stickslip/model/normal_load.hpp"
 
 #include <Eigen/Core>
@@ -48,6 +49,9 @@ struct PointDamper {
   /// This damper's normal force: Inertial (N = N0 - s m y'', paper eqs 23-24) or Constant
   /// (N = N0). ModelOptions::normal_load = Constant overrides it for every damper.
   NormalLoad normal_load = NormalLoad::Inertial;
+  /// This damper's contact point: Moving (X' = V, paper eq 10) or Fixed (X = X0).
+  /// ModelOptions::moving_contact = false overrides it for every damper.
+  ContactPoint contact_point = ContactPoint::Moving;
 
   /// Effective mass s m in this blade's equations (paper eqs 11-14).
   Scalar effective_mass() const { return share * mass; }
