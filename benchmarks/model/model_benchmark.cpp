@@ -320,8 +320,9 @@ BENCHMARK_TEMPLATE(BM_Step, DormandPrince54)->Arg(10);
 BENCHMARK_TEMPLATE(BM_Step, Rosenbrock23)->Arg(100);
 
 /// Integrates the 1e-4 s window [t_start, t_start + 1e-4] that contains one contact switch
-/// (range(1) = 1) or the control window without one (range(1) = 0); range(0) = 1: bisection.
-template <class Method>
+/// (range(1) = 1) or the control window without one (range(1) = 0); range(0) = 1: bisection
+/// (HybridStepper only; ExactLinearStepper locates on its exact solution).
+template <class Stepper>
 void BM_EventWindow(benchmark::State& st) {
   const EventSetup& e = setup();
   if (e.t_event <= 0) {
@@ -338,7 +339,7 @@ void BM_EventWindow(benchmark::State& st) {
   const double t0 = with_event ? e.t_start : e.t_control;
   const System::State& x0 = with_event ? e.x_start : e.x_control;
   const System::Mode& m0 = with_event ? e.mode_start : e.mode_control;
-  HybridStepper<System, Method> stepper(sys, opt);
+  Stepper stepper(sys, opt);
   StepperStats total;
   for (auto _ : st) {
     const auto r = stepper.integrate(m0, t0, x0, t0 + 1e-4);
@@ -354,13 +355,18 @@ void BM_EventWindow(benchmark::State& st) {
   st.counters["steps"] = C(static_cast<double>(total.accepted_steps), C::kAvgIterations);
   st.SetLabel(std::string(with_event ? "window with 1 switch, " : "control window, ") + to_string(opt.event_location));
 }
-BENCHMARK_TEMPLATE(BM_EventWindow, RungeKutta4)->ArgsProduct({{1, 0}, {1, 0}});
-BENCHMARK_TEMPLATE(BM_EventWindow, DormandPrince54)->ArgsProduct({{0, 1}, {1, 0}});
+using Rk4Stepper = HybridStepper<System, RungeKutta4>;
+using DopriStepper = HybridStepper<System, DormandPrince54>;
+using ExponentialStepper = ExactLinearStepper<System>;
+BENCHMARK_TEMPLATE(BM_EventWindow, Rk4Stepper)->ArgsProduct({{1, 0}, {1, 0}});
+BENCHMARK_TEMPLATE(BM_EventWindow, DopriStepper)->ArgsProduct({{0, 1}, {1, 0}});
+BENCHMARK_TEMPLATE(BM_EventWindow, ExponentialStepper)->ArgsProduct({{0}, {1, 0}});
 
 // ---- 20 s of the default scene ------------------------------------------------------------------
 
 /// The example's default run (DOPRI 5(4), rtol 1e-8, atol 1e-12, root finding, samples every
-/// 1e-4 s with full records over the last second) at N0 = range(0) N, once.
+/// 1e-4 s with full records over the last second) at N0 = range(0) N, once; range(1) = 1: the
+/// exponential method (ExactLinearStepper, issue #19) instead of DOPRI.
 void BM_DefaultScene20s(benchmark::State& st) {
   blade::BladeParameters p;
   p.preload = static_cast<double>(st.range(0));
@@ -368,15 +374,17 @@ void BM_DefaultScene20s(benchmark::State& st) {
   blade::RunSettings settings;
   settings.run.stepper.rtol = 1e-8;
   settings.run.stepper.atol = 1e-12;
+  if (st.range(1) != 0) settings.run.integrator = Integrator::Exponential;
   blade::RunRecord rec;
   for (auto _ : st) rec = blade::run_scene(scene, settings);
   st.counters["rhs"] = static_cast<double>(rec.stats.rhs_evaluations);
   st.counters["events"] = static_cast<double>(rec.stats.events);
   st.counters["steps"] = static_cast<double>(rec.stats.accepted_steps);
   st.counters["t_end"] = rec.t_end;
-  st.SetLabel(std::string(to_string(rec.status)) + ", " + rec.overall_regime);
+  st.SetLabel(std::string(to_string(rec.status)) + ", " + rec.overall_regime + ", " +
+             to_string(settings.run.integrator));
 }
-BENCHMARK(BM_DefaultScene20s)->Arg(1)->Arg(12)->Arg(26)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_DefaultScene20s)->ArgsProduct({{1, 12, 26}, {0, 1}})->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

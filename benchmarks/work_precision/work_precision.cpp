@@ -379,6 +379,17 @@ std::vector<Job> make_jobs(const std::vector<Scene>& scenes) {
       j->config.v_eps = ve;
     }
     if (belt) continue;
+    // The exponential method (ExactLinearStepper on the model's linear part, issue #19): exact in
+    // stuck modes (rtol governs only its Lawson steps in the slipping modes with a moving contact),
+    // and exact in every mode with the contact point fixed.
+    for (double rtol : {1e-4, 1e-6, 1e-8, 1e-10})
+      add("exponential", adaptive(Integrator::Exponential, rtol, EventLocation::DenseRootFinding),
+          "rtol=" + num(rtol), rtol, T * 4e6 * std::pow(1e-8 / rtol, 0.2));
+    for (double rtol : {1e-6, 1e-10}) {
+      Job* j = add("exponential fixed contact", adaptive(Integrator::Exponential, rtol, EventLocation::DenseRootFinding),
+                   "rtol=" + num(rtol), rtol, T * 1e6, true);
+      j->config.blade.model.moving_contact = false;
+    }
     // Fewer modes with a loose tolerance: dropping the stiff high modes lifts DOPRI's stability limit.
     for (int n : {3, 4})
       for (double rtol : {1e-4, 1e-6, 1e-8}) {
