@@ -77,7 +77,7 @@ inline const char* to_string(Status s) noexcept {
 
 /// Counters of one run.
 struct StepperStats {
-  /// Accepted steps (fixed-step methods: every step).
+  /// Accepted steps (those of fixed-step methods included).
   long accepted_steps = 0;
   /// Rejected step attempts (error too large, or a non-finite stage).
   long rejected_steps = 0;
