@@ -21,6 +21,7 @@ namespace stickslip {
 /// in ascending order of g, constrained DOFs get free index -1.
 class DofMap {
  public:
+  /// Index type (Eigen's).
   using Index = Eigen::Index;
 
   DofMap() = default;
@@ -39,8 +40,11 @@ class DofMap {
     }
   }
 
+  /// Number of nodes (3 global DOFs each).
   Index num_nodes() const noexcept { return num_nodes_; }
+  /// Number of free (unconstrained) DOFs.
   Index num_free() const noexcept { return static_cast<Index>(global_of_free_.size()); }
+  /// Number of constrained DOFs: 3 num_nodes() - num_free().
   Index num_constrained() const noexcept { return dofs_per_node * num_nodes_ - num_free(); }
 
   /// Free index of a nodal DOF, -1 when it is constrained.

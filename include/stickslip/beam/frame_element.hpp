@@ -24,13 +24,17 @@ namespace stickslip {
 template <class Scalar_>
 class FrameElement {
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// 6 x 6 element matrix over (u1, w1, theta1, u2, w2, theta2).
   using Matrix6 = Eigen::Matrix<Scalar, 6, 6>;
+  /// Material and section of the element.
   using Section = SectionProperties<Scalar>;
 
   /// \param length  element length L [m], finite and > 0
   /// \param cos_a, sin_a  direction cosines of the axis (node a -> node b); must satisfy
   ///        |cos^2 + sin^2 - 1| <= sqrt(machine epsilon)
+  /// \param section material and section (E, rho, A, I > 0, SectionProperties::validate)
   /// \throws std::invalid_argument naming the parameter (also for an invalid section)
   FrameElement(Scalar length, Scalar cos_a, Scalar sin_a, const Section& section)
       : length_(length), cos_(cos_a), sin_(sin_a), section_(section) {
@@ -46,9 +50,13 @@ class FrameElement {
     section.validate(where);
   }
 
+  /// Element length L [m].
   Scalar length() const noexcept { return length_; }
+  /// Direction cosine of the axis (node a -> node b) with global X.
   Scalar cos() const noexcept { return cos_; }
+  /// Direction cosine of the axis (node a -> node b) with global Y.
   Scalar sin() const noexcept { return sin_; }
+  /// Material and section.
   const Section& section() const noexcept { return section_; }
 
   /// Local stiffness: EA/L [1 -1; -1 1] on (u1, u2) and

@@ -17,7 +17,9 @@ namespace stickslip {
 /// `length` at node b; node nodes[i] sits at eps = stations[i].
 template <class Scalar_>
 struct FrameMember {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Index type (Eigen's).
   using Index = Eigen::Index;
 
   std::vector<Index> nodes;      ///< node chain a, interior..., b (size num_elements() + 1)
@@ -25,8 +27,10 @@ struct FrameMember {
   Scalar length{};               ///< member length [m]
   Scalar cos{};                  ///< direction cosine of the axis (a -> b) with global X
   Scalar sin{};                  ///< direction cosine of the axis (a -> b) with global Y
+  /// Material and section of every element of the member.
   SectionProperties<Scalar> section{};
 
+  /// Number of elements: nodes.size() - 1.
   Index num_elements() const noexcept { return static_cast<Index>(nodes.size()) - 1; }
 
   /// Element e, between nodes[e] and nodes[e + 1] (0 <= e < num_elements(), asserted).

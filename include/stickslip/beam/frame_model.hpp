@@ -48,10 +48,15 @@ inline std::uint64_t next_model_id() noexcept {
 template <class Scalar_>
 class FrameModel {
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Index type (Eigen's).
   using Index = Eigen::Index;
+  /// A position (X, Y) [m] in the frame's plane.
   using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
+  /// Material and section of a member.
   using Section = SectionProperties<Scalar>;
+  /// A member with its node chain and stations.
   using Member = FrameMember<Scalar>;
 
   /// Relative tolerance (of the model's bounding-box diagonal) below which two user nodes are
@@ -193,8 +198,11 @@ class FrameModel {
     return members_[idx(id)];
   }
 
+  /// Number of members added.
   Index num_members() const noexcept { return static_cast<Index>(members_.size()); }
+  /// Number of nodes: user nodes and the interior nodes of the member meshes.
   Index num_nodes() const noexcept { return static_cast<Index>(positions_.size()); }
+  /// Total number of elements over all members.
   Index num_elements() const noexcept { return num_elements_; }
 
   /// Position (X, Y) [m] of a node. \throws std::invalid_argument when missing

@@ -12,6 +12,7 @@ namespace stickslip {
 /// E [Pa], rho [kg/m^3], A [m^2], I [m^4] (second moment of area about the bending axis).
 template <class Scalar_>
 struct SectionProperties {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
 
   Scalar E{};    ///< Young's modulus [Pa]

@@ -28,6 +28,7 @@ inline const char* to_string(ContactState s) noexcept {
   return "unknown";
 }
 
+/// Writes to_string(s).
 inline std::ostream& operator<<(std::ostream& os, ContactState s) { return os << to_string(s); }
 
 /// Sign of the sliding velocity in a state: +1 (SlipPositive), -1 (SlipNegative), 0 otherwise.

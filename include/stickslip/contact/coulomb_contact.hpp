@@ -35,7 +35,9 @@ class CoulombContact {
                 "(has_stick_state = false); see stickslip/contact/friction_law.hpp");
 
  public:
+  /// The friction law (template parameter).
   using law_type = Law;
+  /// Floating-point type of the law.
   using Scalar = typename Law::Scalar;
   /// True for exact laws (stick state, set-valued friction); false for regularised laws.
   static constexpr bool has_stick_state = Law::has_stick_state;
@@ -53,13 +55,16 @@ class CoulombContact {
   ///        the velocity overshoot of event location (|v'| times the event time tolerance) and
   ///        below any sliding speed that matters. It is not read when the contact's own velocity
   ///        guard fired: decide_at_rest() / velocity_guard_fired() take v = 0 as located.
+  /// \param law the friction law: exact (stick state) or regularised
   /// \throws std::invalid_argument if velocity_tolerance is negative or non-finite.
   explicit CoulombContact(Law law, Scalar velocity_tolerance = default_velocity_tolerance())
       : law_(std::move(law)), velocity_tolerance_(velocity_tolerance) {
     detail::require_non_negative("CoulombContact", "velocity_tolerance", velocity_tolerance);
   }
 
+  /// The friction law.
   const Law& law() const noexcept { return law_; }
+  /// |v| at or below this counts as v = 0 in decide() (constructor argument).
   Scalar velocity_tolerance() const noexcept { return velocity_tolerance_; }
 
   /// Stick capacity mu_s N (force units); exact laws only.

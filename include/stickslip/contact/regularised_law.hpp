@@ -24,9 +24,12 @@ enum class RegularisedShape : std::uint8_t {
 template <class Scalar_ = double>
 class RegularisedLaw {
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Single-valued law: no stick state, friction -coefficient(v) N in every contact state.
   static constexpr bool has_stick_state = false;
 
+  /// Coefficient mu >= 0, regularisation velocity v_eps >= min_v_eps(mu), shape of s.
   RegularisedLaw(Scalar mu, Scalar v_eps, RegularisedShape shape = RegularisedShape::Tanh)
       : mu_(mu), v_eps_(v_eps), shape_(shape) {
     detail::require_non_negative("RegularisedLaw", "mu", mu);
@@ -67,8 +70,11 @@ class RegularisedLaw {
     return abs(r) < Scalar(1) ? mu_ / v_eps_ : Scalar(0);
   }
 
+  /// Saturated coefficient mu (|coefficient(v)| <= mu).
   Scalar mu() const noexcept { return mu_; }
+  /// Regularisation velocity v_eps.
   Scalar v_eps() const noexcept { return v_eps_; }
+  /// Shape of the regularised sign function.
   RegularisedShape shape() const noexcept { return shape_; }
 
  private:

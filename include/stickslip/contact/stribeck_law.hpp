@@ -16,9 +16,12 @@ namespace stickslip {
 template <class Scalar_ = double>
 class StribeckLaw {
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Exact law: set-valued friction at v = 0, so a stick state.
   static constexpr bool has_stick_state = true;
 
+  /// Coefficients mu_s >= mu_k >= 0, Stribeck velocity v_s > 0, exponent delta > 0 (default 2).
   StribeckLaw(Scalar mu_s, Scalar mu_k, Scalar v_s, Scalar exponent = Scalar(2))
       : mu_s_(mu_s), mu_k_(mu_k), v_s_(v_s), exponent_(exponent) {
     detail::validate_friction_coefficients<Scalar>("StribeckLaw", mu_s, mu_k);
@@ -26,6 +29,7 @@ class StribeckLaw {
     detail::require_positive("StribeckLaw", "exponent", exponent);
   }
 
+  /// mu_s = mu(0): stick holds while |f| <= mu_s N.
   Scalar static_coefficient() const noexcept { return mu_s_; }
 
   /// mu(speed) for speed >= 0.
@@ -37,9 +41,13 @@ class StribeckLaw {
     return mu_k_ + (mu_s_ - mu_k_) * exp(-p);
   }
 
+  /// Static coefficient mu_s.
   Scalar mu_s() const noexcept { return mu_s_; }
+  /// Kinetic coefficient at high speed, mu_k = mu(inf).
   Scalar mu_k() const noexcept { return mu_k_; }
+  /// Stribeck velocity v_s.
   Scalar v_s() const noexcept { return v_s_; }
+  /// Stribeck exponent delta.
   Scalar exponent() const noexcept { return exponent_; }
 
  private:

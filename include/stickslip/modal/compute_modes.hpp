@@ -31,6 +31,7 @@ namespace stickslip {
 /// What compute_modes did (optional output).
 template <class Scalar_>
 struct ModalSolveReport {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
   ModalSolver solver = ModalSolver::Auto;  ///< Dense or Sparse, as actually used (Dense after a fallback)
   Scalar shift = Scalar(0);                ///< sigma of the sparse solver or the dense inverse form [rad^2/s^2]

@@ -24,10 +24,15 @@ namespace stickslip {
 template <class Scalar_>
 class ModalBasis {
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Index type (Eigen's).
   using Index = Eigen::Index;
+  /// Dynamic column vector (per-mode values).
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Dynamic matrix (Phi).
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// Dynamic row vector (a row of Phi).
   using RowVector = Eigen::Matrix<Scalar, 1, Eigen::Dynamic>;
   /// A row of Phi (one nodal DOF, over the modes) without copy or allocation.
   using NodalRow = Eigen::Ref<const RowVector, 0, Eigen::InnerStride<>>;
@@ -36,6 +41,9 @@ class ModalBasis {
 
   /// \param omega ascending circular frequencies [rad/s] (>= 0, rigid-body modes first)
   /// \param phi   mass-normalised modes, dofs.num_free() x omega.size()
+  /// \param dofs  numbering of the free DOFs of the model the modes belong to
+  /// \param model_id FrameModel::id() of that model at assembly
+  /// \param num_rigid_body_modes number of leading zero-frequency (rigid-body) modes
   /// \throws std::invalid_argument on size mismatches, an empty basis, non-finite or negative or
   ///         descending omega, or num_rigid_body_modes outside [0, omega.size()]
   ModalBasis(Vector omega, Matrix phi, DofMap dofs, std::uint64_t model_id, Index num_rigid_body_modes)
@@ -64,10 +72,14 @@ class ModalBasis {
   /// Natural frequencies omega / (2 pi) [Hz].
   Vector frequencies_hz() const { return omega_ / (Scalar(2) * Scalar(EIGEN_PI)); }
   const Matrix& phi() const noexcept { return phi_; }  ///< num_free x size(), Phi^T M Phi = I
+  /// Number of modes n.
   Index size() const noexcept { return omega_.size(); }
+  /// Number of free DOFs (rows of Phi).
   Index num_free() const noexcept { return phi_.rows(); }
+  /// Numbering of the free DOFs.
   const DofMap& dofs() const noexcept { return dofs_; }
   std::uint64_t model_id() const noexcept { return model_id_; }  ///< FrameModel::id() at assembly
+  /// Number of leading rigid-body (zero-frequency) modes.
   Index num_rigid_body_modes() const noexcept { return num_rigid_; }
   /// Modal damping ratios zeta_i (0 until set; a rigid-body mode's ratio is 0, see
   /// damping_coefficients()).

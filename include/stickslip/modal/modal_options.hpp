@@ -32,11 +32,14 @@ inline const char* to_string(ModalSolver s) noexcept {
 /// Options of compute_modes. Aggregate: `ModalOptions<double>{10, 2e4, ModalSolver::Auto, 400}`.
 template <class Scalar_>
 struct ModalOptions {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Index type (Eigen's).
   using Index = Eigen::Index;
 
   Index num_modes = 10;  ///< at most this many lowest modes (>= 1, <= number of free DOFs)
   Scalar max_omega = std::numeric_limits<Scalar>::infinity();  ///< drop modes above [rad/s]
+  /// Eigensolver: Auto (default), Dense or Sparse.
   ModalSolver solver = ModalSolver::Auto;
   Index dense_limit = 400;  ///< Auto uses Dense up to this many free DOFs
   /// Shift sigma [rad^2/s^2] of the sparse solver; NaN selects it automatically (see

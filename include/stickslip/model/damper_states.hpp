@@ -30,21 +30,26 @@ class DamperStates {
     states_.fill(state);
   }
 
+  /// Number of dampers (0 for a default-constructed mode).
   Eigen::Index size() const noexcept { return size_; }
+  /// State of damper `i` (asserts 0 <= i < size()).
   ContactState operator[](Eigen::Index i) const {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
     return states_[static_cast<std::size_t>(i)];
   }
+  /// State of damper `i`, writable (asserts 0 <= i < size()).
   ContactState& operator[](Eigen::Index i) {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
     return states_[static_cast<std::size_t>(i)];
   }
+  /// Same number of dampers, each in the same state.
   bool operator==(const DamperStates& o) const noexcept {
     if (size_ != o.size_) return false;
     for (std::size_t i = 0; i < size_; ++i)
       if (states_[i] != o.states_[i]) return false;
     return true;
   }
+  /// Not operator==.
   bool operator!=(const DamperStates& o) const noexcept { return !(*this == o); }
 
   /// "stick,slip+,..." for logs.

@@ -96,24 +96,40 @@ class FrictionDampedSystem {
   static_assert(Modes == Eigen::Dynamic || Modes > 0, "FrictionDampedSystem: Modes must be > 0 or Dynamic");
 
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Friction law of every damper: one law type, or a std::variant of laws (default FrictionLawVariant).
   using Law = Law_;
+  /// Number of retained modes fixed at compile time, or Eigen::Dynamic (template parameter `Modes`).
   static constexpr int modes_at_compile_time = Modes;
+  /// Continuous state, of state_size() entries (layout in the class description).
   using State = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Dynamic column vector (modal vectors, per-damper values).
   using Vector = State;
+  /// Dynamic matrix.
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// Discrete mode: one ContactState per damper.
   using Mode = DamperStates;
+  /// Index and size type (Eigen's).
   using Index = Eigen::Index;
+  /// A damper of the scene.
   using Damper = PointDamper<Scalar, Law>;
+  /// An external point load of the scene.
   using Load = PointLoad<Scalar>;
+  /// Point values of the modes along one member (component 3).
   using Shapes = MemberShapes<Scalar>;
+  /// Guard values of a mode, num_guards(mode) entries.
   using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
   /// One contact switch, logged by `transition`.
   struct ContactEvent {
+    /// Time of the switch: the located event, or the time given to make_consistent().
     Scalar t;
+    /// Index of the damper that switched (0 .. num_dampers() - 1).
     Index damper;
+    /// Its state before the switch.
     ContactState from;
+    /// Its state after the switch.
     ContactState to;
   };
 
@@ -131,6 +147,8 @@ class FrictionDampedSystem {
     Vector X;      ///< contact coordinates
     Vector slope;  ///< member slope q^T psi_w'(X) at the contacts
     Vector y;      ///< damper displacements along the contact normal, y = q^T psi_w(X) (eq 17)
+    /// False when a force or acceleration is not finite (an overflowing state): rhs()
+    /// then returns NaN for the stepper's finiteness check.
     bool finite = true;
   };
 
@@ -153,8 +171,11 @@ class FrictionDampedSystem {
   /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
   struct EnergyBalance {
     Scalar mechanical;   ///< E(t): modal kinetic + strain + dampers' kinetic, spring, preload potential
+    /// W_ext = integral of sum_l F_l(t) psi_l^T q' dt, work of the point loads.
     Scalar external_work;
+    /// D_visc = integral of q'^T c q' dt >= 0, dissipated by modal damping.
     Scalar viscous_dissipation;
+    /// D_fric = -integral of sum_i f_i V_i dt >= 0, dissipated by friction.
     Scalar friction_dissipation;
     Scalar slope_work;   ///< work of the normal forces as the contacts slide over a sloped member
     Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope)
@@ -166,11 +187,17 @@ class FrictionDampedSystem {
                        ModelOptions<Scalar> options = {});
 
   // ---- layout ---------------------------------------------------------------------------------
+  /// n, the number of retained modes.
   Index num_modes() const noexcept { return n_; }
+  /// D, the number of dampers.
   Index num_dampers() const noexcept { return D_; }
+  /// Offset of the modal coordinates q (n entries): 0.
   Index q_offset() const noexcept { return 0; }
+  /// Offset of the modal velocities q' (n entries): n.
   Index qd_offset() const noexcept { return n_; }
+  /// Offset of the damper displacements x_i along u (D entries): 2n.
   Index x_offset() const noexcept { return 2 * n_; }
+  /// Offset of the damper velocities x_i' (D entries): 2n + D.
   Index xd_offset() const noexcept { return 2 * n_ + D_; }
   /// Offset of the contact coordinates (-1 without a moving contact).
   Index contact_offset() const noexcept { return options_.moving_contact ? 2 * n_ + 2 * D_ : -1; }
@@ -178,12 +205,17 @@ class FrictionDampedSystem {
   Index energy_offset() const noexcept {
     return options_.energy_audit ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) : -1;
   }
+  /// 2n + 2D, plus D with a moving contact, plus 4 with the energy audit.
   Index state_size() const noexcept {
     return 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + (options_.energy_audit ? 4 : 0);
   }
+  /// The modelling switches the system was built with.
   const ModelOptions<Scalar>& options() const noexcept { return options_; }
+  /// The dampers, in the order of the state and of the mode.
   const std::vector<Damper>& dampers() const noexcept { return dampers_; }
+  /// The external point loads.
   const std::vector<Load>& loads() const noexcept { return loads_; }
+  /// Squared natural frequencies omega_j^2 of the retained modes [rad^2/s^2] (eq 25).
   const Vector& omega_squared() const noexcept { return omega2_; }
   /// Eigenvalues of the linear parts of the equations that an explicit fixed step must resolve
   /// (upper half-plane of each conjugate pair): every retained mode of eq 25,
@@ -285,18 +317,26 @@ class FrictionDampedSystem {
     if (!e.finite) dxdt.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
   }
 
+  /// Number of guards in `mode`: per damper its contact guards (CoulombContact::num_guards:
+  /// exact laws stuck two, mu_s N -+ f, slipping one, V; regularised laws none; then N when
+  /// lift-off is watched), then the member-end guards X and L - X while it can slide with a
+  /// moving contact and EndPolicy::Throw.
   Index num_guards(const Mode& mode) const {
     Index count = 0;
     for (Index i = 0; i < D_; ++i) count += guards_of(mode, i);
     return count;
   }
 
+  /// Guard values at (mode, t, x), in the order of num_guards(); an event is a zero crossing in
+  /// the direction of guard_direction().
   void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g) {
     const Evaluation& e = evaluate(mode, t, x);
     g.resize(num_guards(mode));
     fill_guards(mode, e, g.data());
   }
 
+  /// Crossing direction that triggers guard `idx` of `mode` (CoulombContact::guard_direction;
+  /// member-end guards: Falling).
   CrossingDirection guard_direction(const Mode& mode, Index idx) const {
     for (Index i = 0; i < D_; ++i) {
       const Index nc = contact_guards_of(mode, i);
@@ -334,10 +374,22 @@ class FrictionDampedSystem {
   /// How the most recent solve (the most recent evaluate() that missed its cache) was done.
   const SolveInfo& last_solve() const noexcept { return solve_info_; }
 
-  /// Contact switches logged since construction or the last clear_events().
+  /// Contact switches logged since construction or the last clear_events(): one ContactEvent
+  /// per damper whose state a resolution changed, from transition() and from make_consistent().
+  /// So events().size() differs from the stepper's StepperStats::events (one per transition()
+  /// call): a transition that switches k dampers logs k (two mirror dampers: 2 per stepper
+  /// event), one that stops the run (lift-off, a member end) or keeps every state logs none, and
+  /// make_consistent()'s switches at t0 are logged with no stepper event. Equal to the sum over
+  /// the observer's EventRecords of the dampers whose state differs between `from` and `to`, plus
+  /// make_consistent()'s switches (tests/model/event_log_test.cpp).
   const std::vector<ContactEvent>& events() const noexcept { return events_; }
+  /// Empties the event log (e.g. before a new run from the same system).
   void clear_events() { events_.clear(); }
+  /// Why the system last stopped a run or refused a start (None when it never did): set by
+  /// transition() (LiftOff, LeftMember, NoConsistentState) and by make_consistent() (LiftOff at
+  /// t0; a false return without lift-off leaves it as it was); never reset.
   StopReason stop_reason() const noexcept { return stop_reason_; }
+  /// The damper stop_reason() refers to (-1 while it is None).
   Index stop_damper() const noexcept { return stop_damper_; }
 
   /// Mechanical energy: modal kinetic + strain energy, the dampers' kinetic energy along u

@@ -29,6 +29,7 @@ template <class Scalar>
 struct PointLoad {
   MemberId member = 0;  ///< member the load acts on
   Scalar coordinate{};  ///< position along the member [m]
+  /// Direction of the force (or Moment: a moment about Z [N m]); default GlobalX.
   LoadDirection direction = LoadDirection::GlobalX;
   Scalar amplitude{};   ///< [N] or [N m]
   Scalar omega{};       ///< [rad/s]

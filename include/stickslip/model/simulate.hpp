@@ -54,7 +54,9 @@ inline Integrator parse_integrator(const std::string& name) {
 /// Integrator and stepper options of one run.
 template <class Scalar>
 struct RunOptions {
+  /// Integrator of the run (default DormandPrince54; RungeKutta4 steps by stepper.fixed_step).
   Integrator integrator = Integrator::DormandPrince54;
+  /// Tolerances, step sizes, output interval and Zeno limits (stickslip/ode/stepper_options.hpp).
   StepperOptions<Scalar> stepper{};
   /// With RungeKutta4: refuse (std::invalid_argument) a fixed step above RK4's stability limit
   /// for the system's linear rates, when the system reports them (linear_rates()). Switch off

@@ -17,13 +17,22 @@ namespace stickslip {
 /// Outside [0, 1] the same polynomials extrapolate.
 template <class Scalar_>
 struct ElementShapeFunctions {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
 
+  ///@{
   Scalar u1, u2;                    ///< N_u: weights of u1, u2 in u
+  ///@}
   Scalar du;                        ///< N_u' = [-du, du], du = 1 / Le [1/m]
+  ///@{
   Scalar w1, t1, w2, t2;            ///< N_w: weights of w1, theta1, w2, theta2 in w
+  ///@}
+  ///@{
   Scalar dw1, dt1, dw2, dt2;        ///< N_w'
+  ///@}
+  ///@{
   Scalar ddw1, ddt1, ddw2, ddt2;    ///< N_w''
+  ///@}
 
   /// Shape functions at xi for an element of length le > 0.
   ElementShapeFunctions(Scalar xi, Scalar le) noexcept {

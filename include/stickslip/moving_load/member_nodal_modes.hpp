@@ -24,9 +24,13 @@ namespace stickslip {
 /// about Z (counter-clockwise positive) = dw/deps.
 template <class Scalar_>
 struct MemberNodalModes {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Nodal components, nodes x modes.
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// Local coordinates of the nodes.
   using StationVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Vector of indices.
   using IndexVector = Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1>;
 
   MemberId member = 0;  ///< member id (used in messages)

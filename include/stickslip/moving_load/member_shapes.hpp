@@ -63,11 +63,17 @@ class MemberShapes {
   static_assert(Modes == Eigen::Dynamic || Modes > 0, "MemberShapes: Modes must be > 0 or Dynamic");
 
  public:
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// The five row vectors of evaluate() at one point.
   using Values = ShapeValues<Scalar, Modes>;
+  /// One value per mode (fixed-size with a fixed `Modes`).
   using Vector = typename Values::Vector;
+  /// Dynamic column vector.
   using DynamicVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Raw nodal data of a member (constructor input).
   using NodalModes = MemberNodalModes<Scalar>;
+  /// Number of modes fixed at compile time, or Eigen::Dynamic (template parameter `Modes`).
   static constexpr int modes_at_compile_time = Modes;
 
   /// Build from raw nodal data (layer without a FrameModel; see MemberNodalModes).
@@ -181,9 +187,12 @@ class MemberShapes {
   /// (e.g. psi^T q = weights . (B^T q)) without the five n-vectors. O(1) with a cursor still in
   /// the element or a neighbour; updates the cursor. Throws as evaluate().
   struct Location {
+    /// Element holding eps after the end policy.
     Eigen::Index element;
+    /// Shape-function weights at eps in that element (eqs 4-7).
     ElementShapeFunctions<Scalar> weights;
   };
+  /// See Location: the element holding eps and the weights there; updates the cursor.
   Location locate(Scalar eps, ElementCursor& cursor) const {
     const Scalar x = admit(eps, "MemberShapes::locate");
     cursor.element = find_element(x, cursor.element);
@@ -250,6 +259,7 @@ class MemberShapes {
   MemberId member() const noexcept { return member_; }                    ///< member id
   Eigen::Index num_modes() const noexcept { return nodal_.rows(); }           ///< n
   Eigen::Index num_elements() const noexcept { return element_lengths_.size(); }  ///< n_e
+  /// What evaluations beyond the member ends do (Throw, Clamp, Extrapolate).
   EndPolicy end_policy() const noexcept { return policy_; }
   Scalar cos() const noexcept { return cos_; }  ///< member direction cosine
   Scalar sin() const noexcept { return sin_; }  ///< member direction sine

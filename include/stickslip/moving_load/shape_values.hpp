@@ -20,11 +20,17 @@ namespace stickslip {
 template <class Scalar_, int Modes = Eigen::Dynamic>
 struct ShapeValues {
   static_assert(Modes == Eigen::Dynamic || Modes > 0, "ShapeValues: Modes must be > 0 or Dynamic");
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// One value per mode (fixed-size with a fixed `Modes`).
   using Vector = Eigen::Matrix<Scalar, Modes, 1>;
+  /// Number of modes fixed at compile time, or Eigen::Dynamic (template parameter `Modes`).
   static constexpr int modes_at_compile_time = Modes;
 
+  ///@{
+  /// psi_u, psi_u', psi_w, psi_w', psi_w'' at the point, one entry per mode (see above).
   Vector psi_u, dpsi_u, psi_w, dpsi_w, ddpsi_w;
+  ///@}
 
   ShapeValues() = default;
   /// Values for n modes (n must equal Modes when Modes is fixed).
@@ -52,6 +58,7 @@ struct ShapeValues {
 /// previous call. Held by the caller (one per moving load), so a MemberShapes has no mutable state
 /// and may be shared between threads. A default or stale cursor is valid: it only costs a search.
 struct ElementCursor {
+  /// Element found by the last call (-1: none yet).
   Eigen::Index element = -1;
 };
 

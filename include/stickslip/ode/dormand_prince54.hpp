@@ -16,17 +16,23 @@ namespace stickslip {
 /// Hairer's order-4 continuous extension (local error O(h^5)), built only when an event or an
 /// output sample needs it. The default method: non-stiff problems, tight tolerances.
 struct DormandPrince54 {
+  /// Adaptive step: the embedded error estimate controls the step (rtol, atol).
   static constexpr bool adaptive = true;
+  /// Order of the propagated solution.
   static constexpr int order = 5;
   static constexpr int error_order = 4;  ///< the embedded estimate is O(h^5): exponent 1/5
+  /// Name of the method in reports.
   static constexpr const char* name = "DormandPrince54";
 
   /// Stage workspace and step of the method for one system type.
   template <class System>
   class Core {
    public:
+    /// Floating-point type of the system.
     using Scalar = typename System::Scalar;
+    /// Continuous state type of the system.
     using State = typename System::State;
+    /// Discrete mode type of the system.
     using Mode = typename System::Mode;
 
     /// Size the workspace like `prototype` (allocates only for dynamic sizes, once).

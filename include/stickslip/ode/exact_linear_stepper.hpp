@@ -65,12 +65,19 @@ class ExactLinearStepper {
                 "LinearPart<Scalar>&); see stickslip/ode/linear_part.hpp");
 
  public:
+  /// Floating-point type of the system.
   using Scalar = typename System::Scalar;
+  /// Continuous state type of the system.
   using State = typename System::State;
+  /// Discrete mode type of the system.
   using Mode = typename System::Mode;
+  /// Result of a run (status, final state, counters).
   using Result = HybridResult<Scalar, State, Mode>;
+  /// Run-time options.
   using Options = StepperOptions<Scalar>;
+  /// Guard values of a mode.
   using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Dynamic column vector.
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
   /// Guard samples per shortest period 2 pi / rate of a mode.
@@ -95,6 +102,7 @@ class ExactLinearStepper {
     return integrate(std::move(mode), t0, x0, t_end, none);
   }
 
+  /// The options of the stepper (validated at construction).
   const Options& options() const { return opt_; }
   /// Work counters of the last run.
   const ExactStepperStats& work() const { return work_; }
@@ -470,6 +478,7 @@ bool ExactLinearStepper<System>::emit_samples(Observer& obs, const Mode& m, Scal
   }
 }
 
+/// The run loop of integrate(mode, t0, x0, t_end, observer), declared in the class.
 template <class System>
 template <class Observer>
 auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,

@@ -45,12 +45,19 @@ class HybridStepper {
                 "transition(mode, triggered, t, x); see docs/ode.md");
 
  public:
+  /// Floating-point type of the system.
   using Scalar = typename System::Scalar;
+  /// Continuous state type of the system.
   using State = typename System::State;
+  /// Discrete mode type of the system.
   using Mode = typename System::Mode;
+  /// Result of a run (status, final state, counters).
   using Result = HybridResult<Scalar, State, Mode>;
+  /// Run-time options.
   using Options = StepperOptions<Scalar>;
+  /// Guard values of a mode.
   using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// The method's stage workspace and step for this system.
   using Core = typename Method::template Core<System>;
 
   /// Keeps a reference to `system` (it must outlive the stepper). Throws std::invalid_argument
@@ -378,6 +385,7 @@ bool HybridStepper<System, Method>::emit_samples(Observer& obs, const Mode& m, S
   }
 }
 
+/// The run loop of integrate(mode, t0, x0, t_end, observer), declared in the class.
 template <class System, class Method>
 template <class Observer>
 auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,

@@ -44,7 +44,9 @@ struct TransitionAction {
   bool stop = false;    ///< end the run with Status::StoppedBySystem
   std::string reason;   ///< why (kept in HybridResult::message)
 
+  /// Continue the run in the (possibly new) mode.
   static TransitionAction proceed() { return {}; }
+  /// Stop the run with Status::StoppedBySystem and the message `why`.
   static TransitionAction halt(std::string why) { return {true, std::move(why)}; }
 };
 
@@ -75,12 +77,20 @@ inline const char* to_string(Status s) noexcept {
 
 /// Counters of one run.
 struct StepperStats {
+  /// Accepted steps (those of fixed-step methods included).
   long accepted_steps = 0;
+  /// Rejected step attempts (error too large, or a non-finite stage).
   long rejected_steps = 0;
+  /// Right-hand-side evaluations made by the stepper (stages, event location, finite-difference
+  /// Jacobians).
   long rhs_evaluations = 0;
+  /// Guard-vector evaluations.
   long guard_evaluations = 0;
+  /// Jacobians formed (Rosenbrock23: the system's jacobian() or finite differences).
   long jacobian_evaluations = 0;
   long factorisations = 0;  ///< LU factorisations of the iteration matrix (Rosenbrock23)
+  /// Located events: one per call of the system's transition(), however many guards fired
+  /// and whatever it did (FrictionDampedSystem::events() logs one entry per damper switched).
   long events = 0;
 };
 
@@ -108,12 +118,15 @@ struct has_on_event_with_state<
 /// Result of HybridStepper::integrate.
 template <class Scalar, class State, class Mode>
 struct HybridResult {
+  /// How the run ended.
   Status status = Status::Success;
   Scalar t{};            ///< time reached (the failure time when status != Success)
   State x;               ///< state at t
   Mode mode{};           ///< mode at t
   std::string message;   ///< empty on success; otherwise what happened and where
+  /// Counters of the run.
   StepperStats stats;
+  /// status == Status::Success.
   bool ok() const noexcept { return status == Status::Success; }
 };
 
@@ -122,10 +135,13 @@ struct HybridResult {
 /// output time (fixed output rate through the dense output). Returning false stops the run.
 struct NullObserver {
   template <class Scalar, class State, class Mode>
+  /// After each accepted step: continue.
   bool on_step(Scalar, const State&, const Mode&) { return true; }
   template <class Scalar, class Mode>
+  /// After each transition: nothing.
   void on_event(const EventRecord<Scalar, Mode>&) {}
   template <class Scalar, class State, class Mode>
+  /// At each output time: continue.
   bool on_sample(Scalar, const State&, const Mode&) { return true; }
 };
 

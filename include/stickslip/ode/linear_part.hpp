@@ -30,8 +30,11 @@ namespace stickslip {
 /// Linear part of one mode of a hybrid system (see the file comment).
 template <class Scalar_>
 struct LinearPart {
+  /// Floating-point type (template parameter).
   using Scalar = Scalar_;
+  /// Dynamic matrix.
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// Dynamic column vector.
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
 
   /// A_m, size x size: the number of linear components x_L = x[0 .. size).
@@ -40,8 +43,10 @@ struct LinearPart {
   Vector b0;
   /// Angular frequencies w_k of the harmonic terms of b_m (rad per time unit), K of them.
   std::vector<Scalar> omega;
+  ///@{
   /// Cosine and sine coefficients of the harmonic terms, size x K (column k belongs to omega[k]).
   Matrix bc, bs;
+  ///@}
   /// True when r_m is identically zero in this mode: x_L follows the linear ODE exactly.
   bool exact = true;
   /// Changes whenever A_m changes: equal versions promise an equal A_m, so that a method may keep

@@ -19,6 +19,7 @@ namespace stickslip {
 template <class Scalar, class State, class Mode>
 class ObserverRef {
  public:
+  /// The event record passed to on_event.
   using Record = EventRecord<Scalar, Mode>;
 
   /// Refers to `observer` (kept by address).

@@ -82,23 +82,34 @@ enum class JacobianUpdate : std::uint8_t {
 /// Choose it when retained modes reach frequencies far above those of interest (stiff).
 template <JacobianUpdate Update>
 struct BasicRosenbrock23 {
+  /// Adaptive step: the embedded error estimate controls the step (rtol, atol).
   static constexpr bool adaptive = true;
+  /// Order of the propagated solution.
   static constexpr int order = 2;
   static constexpr int error_order = 2;  ///< the estimate is O(h^3): exponent 1/3
+  /// Name of the method in reports ("Rosenbrock23" or "Rosenbrock23Reuse").
   static constexpr const char* name =
       Update == JacobianUpdate::Reuse ? "Rosenbrock23Reuse" : "Rosenbrock23";
+  /// When the Jacobian is formed (template parameter `Update`).
   static constexpr JacobianUpdate jacobian_update = Update;
 
   /// Stage workspace, Jacobian and LU of W for one system type.
   template <class System>
   class Core {
    public:
+    /// Floating-point type of the system.
     using Scalar = typename System::Scalar;
+    /// Continuous state type of the system.
     using State = typename System::State;
+    /// Discrete mode type of the system.
     using Mode = typename System::Mode;
+    /// State size at compile time, or Eigen::Dynamic.
     static constexpr int N = State::RowsAtCompileTime;
+    /// Jacobian and iteration matrix W, N x N.
     using Matrix = Eigen::Matrix<Scalar, N, N>;
+    /// The system supplies jacobian(); else finite differences of rhs().
     static constexpr bool user_jacobian = has_jacobian_v<System>;
+    /// The system supplies time_derivative(); else a finite difference of rhs() in t.
     static constexpr bool user_time_derivative = has_time_derivative_v<System>;
 
     /// Size the workspace like `prototype` (allocates only for dynamic sizes, once).

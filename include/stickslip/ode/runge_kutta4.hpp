@@ -14,17 +14,23 @@ namespace stickslip {
 /// Dense output: cubic Hermite interpolation of x and f at the step ends (order 3, local
 /// error O(h^4)). Use it as the reference point of the paper; prefer DormandPrince54 otherwise.
 struct RungeKutta4 {
+  /// Fixed step StepperOptions::fixed_step: no error estimate.
   static constexpr bool adaptive = false;
+  /// Order of the method.
   static constexpr int order = 4;
   static constexpr int error_order = 4;  ///< unused: no error estimate, no step control
+  /// Name of the method in reports.
   static constexpr const char* name = "RungeKutta4";
 
   /// Stage workspace and step of the method for one system type.
   template <class System>
   class Core {
    public:
+    /// Floating-point type of the system.
     using Scalar = typename System::Scalar;
+    /// Continuous state type of the system.
     using State = typename System::State;
+    /// Discrete mode type of the system.
     using Mode = typename System::Mode;
 
     /// Size the workspace like `prototype` (allocates only for dynamic sizes, once).

@@ -58,6 +58,7 @@ struct StepperOptions {
   Scalar min_step = Scalar(1e-14);     ///< smallest step, relative to max(1, |t|)
   Scalar max_step = std::numeric_limits<Scalar>::infinity();  ///< largest step (adaptive)
   long max_steps = 100'000'000;        ///< budget of step attempts (accepted + rejected)
+  /// How a guard crossing is located in time (default: root finding on the dense output).
   EventLocation event_location = EventLocation::DenseRootFinding;
   EventState event_state = EventState::Reintegrate;  ///< state at a root-found event (not bisection); see docs/ode.md
   Scalar event_time_tolerance = Scalar(1e-12);  ///< width of the final bracket of an event time
