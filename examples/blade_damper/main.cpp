@@ -1,6 +1,7 @@
 // The paper's turbine blade with two under-platform friction dampers (He, Ouyang, Ren & He),
 // built from stickslip's components: runs preloads, writes CSV/JSON records and spectra, a
-// preload sweep with a regime map, and prints a summary. `blade_damper --help` for options.
+// preload sweep with a regime map, re-runs one representative preload per regime found
+// (blade_regime.hpp) with full records, and prints a summary. `blade_damper --help` for options.
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
@@ -53,7 +54,9 @@ Usage: blade_damper [options]
   --preload N0           one run at preload N0 [N] (repeatable)
   --preloads a,b,...     runs at these preloads [N]
   --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel,
-                         log-spaced preloads (linear with --sweep-linear)
+                         log-spaced preloads (linear with --sweep-linear); then one
+                         representative preload per regime found is re-run with full
+                         records into OUT/regime_<name>/
   --sweep-linear         linearly spaced sweep preloads
   --sweep-duration T     duration of each sweep run [s] (default: --duration)
   --duration T           simulated time [s] (default 20)
@@ -449,10 +452,10 @@ int main(int argc, char** argv) {
           std::printf("  %-10s: not found in the sweep (no point where both dampers are in it), no figures\n",
                       blade::to_string(regime));
         else
-          std::printf("  %-10s: N0 = %.3g N, the median of the %zu-point band %.3g .. %.3g N (%zu point(s) in "
-                      "%zu band(s))\n",
-                      blade::to_string(regime), it->preload, it->band_last - it->band_first + 1,
-                      preloads[it->band_first], preloads[it->band_last], it->points, it->bands);
+          std::printf("  %-10s: N0 = %.3g N, the middle point of its widest band %.3g .. %.3g N (%zu of the %zu "
+                      "sweep point(s) in this regime, %zu band(s))\n",
+                      blade::to_string(regime), it->preload, preloads[it->band_first], preloads[it->band_last],
+                      it->band_last - it->band_first + 1, it->points, it->bands);
       }
       std::vector<Frequencies> chosen_fr;
       const std::vector<blade::RunRecord> regime_runs =

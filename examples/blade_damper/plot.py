@@ -154,7 +154,8 @@ def plot_sweep(out, info):
                     label="representatives (regime_*/ figures)" if k == 0 else None)
     ax.set_xlabel("preload N0 [N]")
     ax.set_ylabel("normalised energy density E [m^2]")
-    ax.set_yscale("log")
+    if any(e > 0 for e in s["energy_density_m2"]):  # NaN (no E: every run stopped) compares False
+        ax.set_yscale("log")
     ax.legend()
     ax.set_title("Preload sweep (paper Fig. 20) with regime map")
     fig.tight_layout()
