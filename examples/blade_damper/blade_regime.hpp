@@ -36,9 +36,10 @@ inline const char* to_string(Regime r) {
   return "?";
 }
 
-/// The regime's name as a folder name: out/regime_<folder_name>/ ("gross_slip", "stick_slip", "stick").
-inline std::string folder_name(Regime r) {
-  std::string s = to_string(r);
+/// The folder of the regime's representative run: "regime_" and the name with '_' for ' ' and '-'
+/// ("regime_gross_slip", "regime_stick_slip", "regime_stick").
+inline std::string regime_folder(Regime r) {
+  std::string s = std::string("regime_") + to_string(r);
   for (char& c : s)
     if (c == ' ' || c == '-') c = '_';
   return s;

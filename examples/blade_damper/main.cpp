@@ -331,14 +331,14 @@ blade::RunRecord run_preload(const Cli& c, double preload, double duration, Freq
   return blade::run_scene(scene, settings_for(c, duration));
 }
 
-/// Runs the preloads in parallel on `threads` workers (all cores when 0), printing progress
+/// Runs the preloads in parallel on --threads workers (all cores by default), printing progress
 /// under `what`; the full records of the last window are kept only when `keep_windows`.
-/// With `frequencies`, also fills it with the natural frequencies of each run's scene.
+/// With `natural`, also fills it with the natural frequencies of each run's scene.
 std::vector<blade::RunRecord> run_parallel(const Cli& c, const std::vector<double>& preloads, double duration,
                                            bool keep_windows, const char* what,
-                                           std::vector<Frequencies>* frequencies = nullptr) {
+                                           std::vector<Frequencies>* natural = nullptr) {
   std::vector<blade::RunRecord> results(preloads.size());
-  if (frequencies) frequencies->assign(preloads.size(), Frequencies{});
+  if (natural) natural->assign(preloads.size(), Frequencies{});
   std::atomic<std::size_t> next{0}, done{0};
   std::mutex print_mutex;
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
@@ -346,7 +346,7 @@ std::vector<blade::RunRecord> run_parallel(const Cli& c, const std::vector<doubl
                                      static_cast<unsigned>(std::max<std::size_t>(1, preloads.size())));
   auto worker = [&]() {
     for (std::size_t k = next++; k < preloads.size(); k = next++) {
-      results[k] = run_preload(c, preloads[k], duration, frequencies ? &(*frequencies)[k] : nullptr);
+      results[k] = run_preload(c, preloads[k], duration, natural ? &(*natural)[k] : nullptr);
       if (!keep_windows) results[k].window.clear();
       const std::size_t d = ++done;
       std::lock_guard<std::mutex> lock(print_mutex);
@@ -360,6 +360,49 @@ std::vector<blade::RunRecord> run_parallel(const Cli& c, const std::vector<doubl
   for (auto& th : pool) th.join();
   std::printf("\n");
   return results;
+}
+
+/// One representative preload per regime found in the sweep (blade::choose_representatives),
+/// re-run with full records into out/regime_<name>/; prints the choice and why, and writes the
+/// representatives' entries of sweep.json to `j`.
+void run_representatives(const Cli& c, const fs::path& out, const std::vector<double>& preloads,
+                         const std::vector<blade::RunRecord>& results, double duration, std::ostream& j) {
+  std::vector<std::optional<blade::Regime>> regimes;
+  for (const auto& r : results) regimes.push_back(r.common);
+  const std::vector<blade::Representative> chosen = blade::choose_representatives(preloads, regimes);
+  std::printf("regime rule: %s\nrepresentatives: %s\n", blade::regime_rule_text(),
+              blade::representative_rule_text());
+  std::vector<double> chosen_preloads;
+  for (const auto& rep : chosen) chosen_preloads.push_back(rep.preload);
+  for (blade::Regime regime : blade::kRegimes) {
+    const auto it = std::find_if(chosen.begin(), chosen.end(), [&](const auto& rep) { return rep.regime == regime; });
+    if (it == chosen.end())
+      std::printf("  %-10s: not found in the sweep (no point where both dampers are in it), no figures\n",
+                  blade::to_string(regime));
+    else
+      std::printf("  %-10s: N0 = %.3g N, the middle point of its widest band %.3g .. %.3g N (%zu of the %zu "
+                  "sweep point(s) in this regime, %zu band(s))\n",
+                  blade::to_string(regime), it->preload, preloads[it->band_first], preloads[it->band_last],
+                  it->band_last - it->band_first + 1, it->points, it->bands);
+  }
+  std::vector<Frequencies> chosen_fr;
+  const std::vector<blade::RunRecord> regime_runs =
+      chosen.empty() ? std::vector<blade::RunRecord>{}
+                     : run_parallel(c, chosen_preloads, duration, true, "regime runs", &chosen_fr);
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    const auto& rep = chosen[k];
+    const std::string folder = blade::regime_folder(rep.regime);
+    fs::create_directories(out / folder);
+    write_run(out / folder, regime_runs[k], chosen_fr[k], c.settings.sample_interval, params_at(c, rep.preload),
+              settings_for(c, duration));
+    std::printf("%s/ ", folder.c_str());
+    print_run(regime_runs[k], chosen_fr[k]);
+    j << (k ? ", " : "") << "{\"regime\": \"" << blade::to_string(rep.regime) << "\", \"folder\": \"" << folder
+      << "\", \"preload_N\": " << jnum(rep.preload) << ", \"band_from_N\": " << jnum(preloads[rep.band_first])
+      << ", \"band_to_N\": " << jnum(preloads[rep.band_last])
+      << ", \"band_points\": " << rep.band_last - rep.band_first + 1 << ", \"points\": " << rep.points
+      << ", \"bands\": " << rep.bands << ", \"rerun_regime\": \"" << regime_runs[k].overall_regime << "\"}";
+  }
 }
 
 }  // namespace
@@ -433,48 +476,12 @@ int main(int argc, char** argv) {
       }
       j << "],\n  \"regimes\": [";
       for (std::size_t k = 0; k < blade::kRegimes.size(); ++k)
-        j << (k ? ", " : "") << "{\"name\": \"" << blade::to_string(blade::kRegimes[k]) << "\", \"folder\": \"regime_"
-          << blade::folder_name(blade::kRegimes[k]) << "\"}";
+        j << (k ? ", " : "") << "{\"name\": \"" << blade::to_string(blade::kRegimes[k]) << "\", \"folder\": \""
+          << blade::regime_folder(blade::kRegimes[k]) << "\"}";
       j << "],\n  \"regime_rule\": \"" << blade::regime_rule_text() << "\",\n  \"representative_rule\": \""
         << blade::representative_rule_text() << "\",\n  \"representatives\": [";
 
-      // One representative preload per regime found, re-run with full records into regime_<name>/.
-      std::vector<std::optional<blade::Regime>> regimes;
-      for (const auto& r : results) regimes.push_back(r.common);
-      const std::vector<blade::Representative> chosen = blade::choose_representatives(preloads, regimes);
-      std::printf("regime rule: %s\nrepresentatives: %s\n", blade::regime_rule_text(),
-                  blade::representative_rule_text());
-      std::vector<double> chosen_preloads;
-      for (const auto& rep : chosen) chosen_preloads.push_back(rep.preload);
-      for (blade::Regime regime : blade::kRegimes) {
-        const auto it = std::find_if(chosen.begin(), chosen.end(), [&](const auto& rep) { return rep.regime == regime; });
-        if (it == chosen.end())
-          std::printf("  %-10s: not found in the sweep (no point where both dampers are in it), no figures\n",
-                      blade::to_string(regime));
-        else
-          std::printf("  %-10s: N0 = %.3g N, the middle point of its widest band %.3g .. %.3g N (%zu of the %zu "
-                      "sweep point(s) in this regime, %zu band(s))\n",
-                      blade::to_string(regime), it->preload, preloads[it->band_first], preloads[it->band_last],
-                      it->band_last - it->band_first + 1, it->points, it->bands);
-      }
-      std::vector<Frequencies> chosen_fr;
-      const std::vector<blade::RunRecord> regime_runs =
-          chosen.empty() ? std::vector<blade::RunRecord>{}
-                         : run_parallel(c, chosen_preloads, duration, true, "regime runs", &chosen_fr);
-      for (std::size_t k = 0; k < chosen.size(); ++k) {
-        const auto& rep = chosen[k];
-        const std::string folder = "regime_" + blade::folder_name(rep.regime);
-        fs::create_directories(out / folder);
-        write_run(out / folder, regime_runs[k], chosen_fr[k], c.settings.sample_interval, params_at(c, rep.preload),
-                  settings_for(c, duration));
-        std::printf("%s/ ", folder.c_str());
-        print_run(regime_runs[k], chosen_fr[k]);
-        j << (k ? ", " : "") << "{\"regime\": \"" << blade::to_string(rep.regime) << "\", \"folder\": \"" << folder
-          << "\", \"preload_N\": " << jnum(rep.preload) << ", \"band_from_N\": " << jnum(preloads[rep.band_first])
-          << ", \"band_to_N\": " << jnum(preloads[rep.band_last])
-          << ", \"band_points\": " << rep.band_last - rep.band_first + 1 << ", \"points\": " << rep.points
-          << ", \"bands\": " << rep.bands << ", \"rerun_regime\": \"" << regime_runs[k].overall_regime << "\"}";
-      }
+      run_representatives(c, out, preloads, results, duration, j);
       j << "]\n}\n";
     }
 

@@ -61,9 +61,9 @@ TEST(BladeRegime, NamesAndFoldersAreDistinctAndOrderedByPreload) {
   EXPECT_STREQ(blade::to_string(G), "gross slip");
   EXPECT_STREQ(blade::to_string(SS), "stick-slip");
   EXPECT_STREQ(blade::to_string(S), "stick");
-  EXPECT_EQ(blade::folder_name(G), "gross_slip");
-  EXPECT_EQ(blade::folder_name(SS), "stick_slip");
-  EXPECT_EQ(blade::folder_name(S), "stick");
+  EXPECT_EQ(blade::regime_folder(G), "regime_gross_slip");
+  EXPECT_EQ(blade::regime_folder(SS), "regime_stick_slip");
+  EXPECT_EQ(blade::regime_folder(S), "regime_stick");
 }
 
 TEST(BladeRegime, CommonRegimeOnlyWhenBothDampersAgree) {
