@@ -3,6 +3,7 @@
 /// \brief One simulation of the blade-damper scene with the records the example writes:
 /// sampled histories, the event log, regimes per damper, E (the paper's energy density), stats.
 
+#include "blade_regime.hpp"
 #include "blade_scene.hpp"
 
 #include <stickslip/stickslip.hpp>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <ctime>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,9 +46,10 @@ struct Sample {
 struct DamperRegime {
   double stick_fraction = 0;          ///< fraction of samples stuck
   double transitions_per_period = 0;  ///< contact switches per excitation period
-  /// "gross slip" (stuck less than 5 % of the time: at most brief stops at velocity reversals),
-  /// "stick" (stuck more than 99.9 % of the time) or "stick-slip" in between.
-  std::string regime;
+  /// damper_regime(stick_fraction) (blade_regime.hpp); none when the run stopped before the window.
+  std::optional<Regime> regime;
+  /// The regime's name, or "not reached".
+  std::string name() const { return regime ? to_string(*regime) : "not reached"; }
 };
 
 /// Everything one run produces.
@@ -62,7 +65,9 @@ struct RunRecord {
   double energy_density = 0;           ///< E = mean of x_tip^2 over [t1, t2] (paper section 3.4)
   double tip_max = 0, tip_rms = 0;     ///< over the record window
   DamperRegime regime[2];
-  std::string overall_regime;         ///< common regime, or why the run stopped
+  std::optional<Regime> common;        ///< common_regime() of the dampers; none if the run stopped
+  /// The common regime's name, "<damper 1> / <damper 2>" when they differ, or why the run stopped.
+  std::string overall_regime;
   double energy_residual = 0;          ///< final energy-audit residual [J]
   double energy_scale = 0;             ///< largest |term| of the audit, for a relative measure [J]
   std::vector<stickslip::FrictionDampedSystem<double>::ContactEvent> events;  ///< in the window
@@ -191,17 +196,16 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
     DamperRegime& r = rec.regime[i];
     if (!reached) {
       r.stick_fraction = r.transitions_per_period = none;
-      r.regime = "not reached";
       continue;
     }
     r.stick_fraction = stuck[i] / count;
     r.transitions_per_period = static_cast<double>(switches[i]) / periods;
-    r.regime = r.stick_fraction >= 0.999 ? "stick" : (r.stick_fraction < 0.05 ? "gross slip" : "stick-slip");
+    r.regime = damper_regime(r.stick_fraction);
   }
-  rec.overall_regime = rec.regime[0].regime == rec.regime[1].regime
-                           ? rec.regime[0].regime
-                           : rec.regime[0].regime + " / " + rec.regime[1].regime;
+  rec.common = common_regime(rec.regime[0].regime, rec.regime[1].regime);
+  rec.overall_regime = rec.common ? to_string(*rec.common) : rec.regime[0].name() + " / " + rec.regime[1].name();
   if (result.status != Status::Success) {
+    rec.common.reset();
     using Stop = BladeScene::System::StopReason;
     const Stop why = sys.stop_reason();
     rec.overall_regime = why == Stop::LiftOff ? "lift-off" : why == Stop::LeftMember ? "left platform" : "run stopped";

@@ -1,6 +1,8 @@
 // The paper's turbine blade with two under-platform friction dampers (He, Ouyang, Ren & He),
 // built from stickslip's components: runs preloads, writes CSV/JSON records and spectra, a
-// preload sweep with a regime map, and prints a summary. `blade_damper --help` for options.
+// preload sweep with a regime map, re-runs one representative preload per regime found
+// (blade_regime.hpp) with full records, and prints a summary. `blade_damper --help` for options.
+#include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
 
@@ -19,6 +21,7 @@
 #include <iostream>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -51,7 +54,9 @@ Usage: blade_damper [options]
   --preload N0           one run at preload N0 [N] (repeatable)
   --preloads a,b,...     runs at these preloads [N]
   --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel,
-                         log-spaced preloads (linear with --sweep-linear)
+                         log-spaced preloads (linear with --sweep-linear); then one
+                         representative preload per regime found is re-run with full
+                         records into OUT/regime_<name>/
   --sweep-linear         linearly spaced sweep preloads
   --sweep-duration T     duration of each sweep run [s] (default: --duration)
   --duration T           simulated time [s] (default 20)
@@ -264,7 +269,7 @@ void write_run(const fs::path& dir, const blade::RunRecord& r, const Frequencies
     << ",\n  \"status\": \"" << to_string(r.status) << "\",\n  \"message\": \"" << r.message
     << "\",\n  \"t_end\": " << jnum(r.t_end) << ",\n  \"regime\": \"" << r.overall_regime << "\",\n  \"dampers\": [";
   for (int i = 0; i < 2; ++i)
-    o << (i ? ", " : "") << "{\"regime\": \"" << r.regime[i].regime << "\", \"stick_fraction\": "
+    o << (i ? ", " : "") << "{\"regime\": \"" << r.regime[i].name() << "\", \"stick_fraction\": "
       << jnum(r.regime[i].stick_fraction) << ", \"transitions_per_period\": "
       << jnum(r.regime[i].transitions_per_period) << "}";
   o << "],\n  \"tip_amplitude_max_m\": " << jnum(r.tip_max) << ",\n  \"tip_rms_m\": " << jnum(r.tip_rms)
@@ -302,18 +307,102 @@ void print_run(const blade::RunRecord& r, const Frequencies& fr) {
               r.status == Status::Success ? "" : " - ", r.status == Status::Success ? "" : r.message.c_str());
 }
 
-blade::RunRecord run_preload(const Cli& c, double preload, double duration, Frequencies* fr_out) {
+/// The scene's parameters at this preload.
+blade::BladeParameters params_at(const Cli& c, double preload) {
   blade::BladeParameters p = c.params;
   p.preload = preload;
+  return p;
+}
+
+/// The run settings for this duration: the last second recorded, E over the paper's window.
+blade::RunSettings settings_for(const Cli& c, double duration) {
   blade::RunSettings s = c.settings;
   s.duration = duration;
   s.record_window = std::min(1.0, duration);
   s.energy_t1 = 19.0;
   s.energy_t2 = 19.5;
   s.fit_energy_window();
-  blade::BladeScene scene = blade::make_blade_scene(p);
+  return s;
+}
+
+blade::RunRecord run_preload(const Cli& c, double preload, double duration, Frequencies* fr_out) {
+  blade::BladeScene scene = blade::make_blade_scene(params_at(c, preload));
   if (fr_out) *fr_out = frequencies(scene);
-  return blade::run_scene(scene, s);
+  return blade::run_scene(scene, settings_for(c, duration));
+}
+
+/// Runs the preloads in parallel on --threads workers (all cores by default), printing progress
+/// under `what`; the full records of the last window are kept only when `keep_windows`.
+/// With `natural`, also fills it with the natural frequencies of each run's scene.
+std::vector<blade::RunRecord> run_parallel(const Cli& c, const std::vector<double>& preloads, double duration,
+                                           bool keep_windows, const char* what,
+                                           std::vector<Frequencies>* natural = nullptr) {
+  std::vector<blade::RunRecord> results(preloads.size());
+  if (natural) natural->assign(preloads.size(), Frequencies{});
+  std::atomic<std::size_t> next{0}, done{0};
+  std::mutex print_mutex;
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned nthreads = std::min(c.threads > 0 ? static_cast<unsigned>(c.threads) : hw,
+                                     static_cast<unsigned>(std::max<std::size_t>(1, preloads.size())));
+  auto worker = [&]() {
+    for (std::size_t k = next++; k < preloads.size(); k = next++) {
+      results[k] = run_preload(c, preloads[k], duration, natural ? &(*natural)[k] : nullptr);
+      if (!keep_windows) results[k].window.clear();
+      const std::size_t d = ++done;
+      std::lock_guard<std::mutex> lock(print_mutex);
+      std::printf("\r%s: %zu/%zu preloads done (last N0 = %.2f N: %s)        ", what, d, preloads.size(),
+                  preloads[k], results[k].overall_regime.c_str());
+      std::fflush(stdout);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < nthreads; ++t) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+  std::printf("\n");
+  return results;
+}
+
+/// One representative preload per regime found in the sweep (blade::choose_representatives),
+/// re-run with full records into out/regime_<name>/; prints the choice and why, and writes the
+/// representatives' entries of sweep.json to `j`.
+void run_representatives(const Cli& c, const fs::path& out, const std::vector<double>& preloads,
+                         const std::vector<blade::RunRecord>& results, double duration, std::ostream& j) {
+  std::vector<std::optional<blade::Regime>> regimes;
+  for (const auto& r : results) regimes.push_back(r.common);
+  const std::vector<blade::Representative> chosen = blade::choose_representatives(preloads, regimes);
+  std::printf("regime rule: %s\nrepresentatives: %s\n", blade::regime_rule_text(),
+              blade::representative_rule_text());
+  std::vector<double> chosen_preloads;
+  for (const auto& rep : chosen) chosen_preloads.push_back(rep.preload);
+  for (blade::Regime regime : blade::kRegimes) {
+    const auto it = std::find_if(chosen.begin(), chosen.end(), [&](const auto& rep) { return rep.regime == regime; });
+    if (it == chosen.end())
+      std::printf("  %-10s: not found in the sweep (no point where both dampers are in it), no figures\n",
+                  blade::to_string(regime));
+    else
+      std::printf("  %-10s: N0 = %.3g N, the middle point of its widest band %.3g .. %.3g N (%zu of the %zu "
+                  "sweep point(s) in this regime, %zu band(s))\n",
+                  blade::to_string(regime), it->preload, preloads[it->band_first], preloads[it->band_last],
+                  it->band_last - it->band_first + 1, it->points, it->bands);
+  }
+  std::vector<Frequencies> chosen_fr;
+  const std::vector<blade::RunRecord> regime_runs =
+      chosen.empty() ? std::vector<blade::RunRecord>{}
+                     : run_parallel(c, chosen_preloads, duration, true, "regime runs", &chosen_fr);
+  for (std::size_t k = 0; k < chosen.size(); ++k) {
+    const auto& rep = chosen[k];
+    const std::string folder = blade::regime_folder(rep.regime);
+    fs::create_directories(out / folder);
+    write_run(out / folder, regime_runs[k], chosen_fr[k], c.settings.sample_interval, params_at(c, rep.preload),
+              settings_for(c, duration));
+    std::printf("%s/ ", folder.c_str());
+    print_run(regime_runs[k], chosen_fr[k]);
+    j << (k ? ", " : "") << "{\"regime\": \"" << blade::to_string(rep.regime) << "\", \"folder\": \"" << folder
+      << "\", \"preload_N\": " << jnum(rep.preload) << ", \"band_from_N\": " << jnum(preloads[rep.band_first])
+      << ", \"band_to_N\": " << jnum(preloads[rep.band_last])
+      << ", \"band_points\": " << rep.band_last - rep.band_first + 1 << ", \"points\": " << rep.points
+      << ", \"bands\": " << rep.bands << ", \"rerun_regime\": \"" << regime_runs[k].overall_regime << "\"}";
+  }
 }
 
 }  // namespace
@@ -338,9 +427,7 @@ int main(int argc, char** argv) {
     for (double preload : c.preloads) {
       Frequencies fr;
       blade::RunRecord r = run_preload(c, preload, c.settings.duration, &fr);
-      blade::BladeParameters p = c.params;
-      p.preload = preload;
-      write_run(out, r, fr, c.settings.sample_interval, p, c.settings);
+      write_run(out, r, fr, c.settings.sample_interval, params_at(c, preload), settings_for(c, c.settings.duration));
       print_run(r, fr);
       runs.push_back(std::move(r));
     }
@@ -353,26 +440,7 @@ int main(int argc, char** argv) {
         preloads[static_cast<std::size_t>(k)] =
             c.sweep_log ? c.sweep_lo * std::pow(c.sweep_hi / c.sweep_lo, s) : c.sweep_lo + (c.sweep_hi - c.sweep_lo) * s;
       }
-      std::vector<blade::RunRecord> results(preloads.size());
-      std::atomic<std::size_t> next{0}, done{0};
-      std::mutex print_mutex;
-      const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-      const unsigned nthreads = c.threads > 0 ? static_cast<unsigned>(c.threads) : hw;
-      auto worker = [&]() {
-        for (std::size_t k = next++; k < preloads.size(); k = next++) {
-          results[k] = run_preload(c, preloads[k], duration, nullptr);
-          results[k].window.clear();
-          const std::size_t d = ++done;
-          std::lock_guard<std::mutex> lock(print_mutex);
-          std::printf("\rsweep: %zu/%zu preloads done (last N0 = %.2f N: %s)        ", d, preloads.size(),
-                      preloads[k], results[k].overall_regime.c_str());
-          std::fflush(stdout);
-        }
-      };
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < nthreads; ++t) pool.emplace_back(worker);
-      for (auto& th : pool) th.join();
-      std::printf("\n");
+      std::vector<blade::RunRecord> results = run_parallel(c, preloads, duration, false, "sweep");
       std::size_t best = 0;
       for (std::size_t k = 0; k < results.size(); ++k)
         if (std::isfinite(results[k].energy_density) &&
@@ -406,17 +474,26 @@ int main(int argc, char** argv) {
           start = k;
         }
       }
+      j << "],\n  \"regimes\": [";
+      for (std::size_t k = 0; k < blade::kRegimes.size(); ++k)
+        j << (k ? ", " : "") << "{\"name\": \"" << blade::to_string(blade::kRegimes[k]) << "\", \"folder\": \""
+          << blade::regime_folder(blade::kRegimes[k]) << "\"}";
+      j << "],\n  \"regime_rule\": \"" << blade::regime_rule_text() << "\",\n  \"representative_rule\": \""
+        << blade::representative_rule_text() << "\",\n  \"representatives\": [";
+
+      run_representatives(c, out, preloads, results, duration, j);
       j << "]\n}\n";
     }
 
     if (!c.preloads.empty()) {
       // Does each of the paper's preloads fall in the paper's regime?
-      const struct { double n0; const char* regime; } paper[] = {{1.0, "gross slip"}, {12.0, "stick-slip"}, {26.0, "stick"}};
+      const struct { double n0; blade::Regime regime; } paper[] = {
+          {1.0, blade::Regime::GrossSlip}, {12.0, blade::Regime::StickSlip}, {26.0, blade::Regime::Stick}};
       for (const auto& r : runs)
         for (const auto& pr : paper)
           if (std::abs(r.preload - pr.n0) < 1e-9)
-            std::printf("paper: N0 = %g N is in the %s regime; here: %s -> %s\n", pr.n0, pr.regime,
-                        r.overall_regime.c_str(), r.overall_regime == pr.regime ? "agrees" : "DIFFERS");
+            std::printf("paper: N0 = %g N is in the %s regime; here: %s -> %s\n", pr.n0, blade::to_string(pr.regime),
+                        r.overall_regime.c_str(), r.common == pr.regime ? "agrees" : "DIFFERS");
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "blade_damper: %s\n", e.what());

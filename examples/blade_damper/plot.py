@@ -2,10 +2,13 @@
 """PNG figures of the blade_damper results, in the style of the paper's Figs 8-20.
 
 Usage: /usr/bin/python3 examples/blade_damper/plot.py OUT_DIR
-Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv and sweep.csv written by blade_damper.
+Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv, sweep.csv and sweep.json written by
+blade_damper, and the same records of each regime's representative run in OUT_DIR/regime_*/.
+Regime names come from sweep.json (the example's one rule, blade_regime.hpp), not from here.
 """
 import csv
 import glob
+import json
 import os
 import sys
 
@@ -37,7 +40,7 @@ def spectrum_axis(ax, spec, key, label, fmax=400.0):
     ax.set_ylabel(label)
 
 
-def plot_run(out, tag):
+def plot_run(out, tag, title=None):
     hist = read_csv(os.path.join(out, f"history_{tag}.csv"))
     if not hist:
         return []
@@ -45,6 +48,7 @@ def plot_run(out, tag):
     spec = read_csv(spec_path) if os.path.exists(spec_path) else None
     t = hist["t"]
     made = []
+    what = title or tag.replace("_", " = ") + " N"
 
     # Fig 8/12/16: tip response and its spectrum.
     fig, ax = plt.subplots(1, 2, figsize=(10, 3.5))
@@ -53,7 +57,7 @@ def plot_run(out, tag):
     ax[0].set_ylabel("blade tip x [mm]")
     if spec:
         spectrum_axis(ax[1], spec, "tip", "tip amplitude [m]")
-    fig.suptitle(f"Blade tip, {tag.replace('_', ' = ')} N")
+    fig.suptitle(f"Blade tip, {what}")
     fig.tight_layout()
     made.append(os.path.join(out, f"tip_{tag}.png"))
     fig.savefig(made[-1], dpi=110)
@@ -71,7 +75,7 @@ def plot_run(out, tag):
         if spec:
             spectrum_axis(ax[0, i + 1], spec, f"N{i}", f"|N{i}| [N]")
             spectrum_axis(ax[1, i + 1], spec, f"f{i}", f"|f{i}| [N]")
-    fig.suptitle(f"Contact forces, {tag.replace('_', ' = ')} N")
+    fig.suptitle(f"Contact forces, {what}")
     fig.tight_layout()
     made.append(os.path.join(out, f"forces_{tag}.png"))
     fig.savefig(made[-1], dpi=110)
@@ -89,7 +93,7 @@ def plot_run(out, tag):
         if spec:
             spectrum_axis(ax[0, i + 1], spec, f"x{i}", f"|x{i}| [m]")
             spectrum_axis(ax[1, i + 1], spec, f"y{i}", f"|y{i}| [m]")
-    fig.suptitle(f"Damper motion, {tag.replace('_', ' = ')} N")
+    fig.suptitle(f"Damper motion, {what}")
     fig.tight_layout()
     made.append(os.path.join(out, f"dampers_{tag}.png"))
     fig.savefig(made[-1], dpi=110)
@@ -97,6 +101,7 @@ def plot_run(out, tag):
 
     # Fig 11/15/19: phase planes, relative velocity vs damper displacement.
     fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    fig.suptitle(f"Phase planes, {what}")
     for i in (1, 2):
         ax[i - 1].plot([1e6 * v for v in hist[f"x{i}"]], [1e3 * v for v in hist[f"V{i}"]], lw=0.6)
         ax[i - 1].set_xlabel(f"x{i} [um]")
@@ -109,12 +114,21 @@ def plot_run(out, tag):
     return made
 
 
-def plot_sweep(out):
+def read_sweep_json(out):
+    path = os.path.join(out, "sweep.json")
+    if not os.path.exists(path):
+        return {}
+    with open(path) as fh:
+        return json.load(fh)
+
+
+def plot_sweep(out, info):
     path = os.path.join(out, "sweep.csv")
     if not os.path.exists(path):
         return []
     s = read_csv(path)
-    colours = {"gross slip": "tab:red", "stick-slip": "tab:orange", "stick": "tab:blue"}
+    names = [r["name"] for r in info.get("regimes", [])]
+    colours = dict(zip(names, ["tab:red", "tab:orange", "tab:blue"]))
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.plot(s["preload_N"], s["energy_density_m2"], "-", color="0.6", lw=1)
     stopped = [p for p, r in zip(s["preload_N"], s["regime"]) if r in ("lift-off", "left platform", "run stopped")]
@@ -131,9 +145,17 @@ def plot_sweep(out):
               if r not in colours and p not in stopped]
     if others:
         ax.plot([p for p, _ in others], [e for _, e in others], "x", color="k", label="mixed regimes")
+    reps = info.get("representatives", [])
+    energy = dict(zip(s["preload_N"], s["energy_density_m2"]))
+    for k, rep in enumerate(reps):
+        e = energy.get(rep["preload_N"])
+        if e is not None:
+            ax.plot([rep["preload_N"]], [e], "s", ms=12, mfc="none", color=colours.get(rep["regime"], "k"),
+                    label="representatives (regime_*/ figures)" if k == 0 else None)
     ax.set_xlabel("preload N0 [N]")
     ax.set_ylabel("normalised energy density E [m^2]")
-    ax.set_yscale("log")
+    if any(e > 0 for e in s["energy_density_m2"]):  # NaN (no E: every run stopped) compares False
+        ax.set_yscale("log")
     ax.legend()
     ax.set_title("Preload sweep (paper Fig. 20) with regime map")
     fig.tight_layout()
@@ -149,8 +171,14 @@ def main():
     for path in sorted(glob.glob(os.path.join(out, "history_N0_*.csv"))):
         tag = os.path.basename(path)[len("history_"):-len(".csv")]
         made += plot_run(out, tag)
-    made += plot_sweep(out)
-    print(f"plot.py: wrote {len(made)} PNG figures in {out}/")
+    info = read_sweep_json(out)
+    for rep in info.get("representatives", []):
+        folder = os.path.join(out, rep["folder"])
+        for path in sorted(glob.glob(os.path.join(folder, "history_N0_*.csv"))):
+            tag = os.path.basename(path)[len("history_"):-len(".csv")]
+            made += plot_run(folder, tag, f"{rep['regime']} (N0 = {rep['preload_N']:.3g} N)")
+    made += plot_sweep(out, info)
+    print(f"plot.py: wrote {len(made)} PNG figures in {out}/ and its regime_*/ folders")
 
 
 if __name__ == "__main__":
