@@ -400,6 +400,54 @@ TEST(StepRates, RegularisedSlopeMatchesTheLinearisedModel) {
   }
 }
 
+// Two identical regularised dampers at one point couple through the member: their common-mode
+// sliding relaxes at c/m + 2 c |b|^2, which the reported 2 sigma_i = c/m + sum_j c beta_j is
+// exactly (the differential mode relaxes at c/m): the bound is attained, so the same 1e-4 as
+// above (measured with the same coupling to the slow mode).
+TEST(StepRates, CoincidentRegularisedDampersAttainTheCouplingBound) {
+  Scene sc(1, 6, 4, 20.0);
+  sc.model.moving_contact = false;
+  sc.model.normal_load = NormalLoad::Constant;
+  System& sys = sc.build({regularised_damper(sc.s.platform), regularised_damper(sc.s.platform)});
+  const double reported = reported_stiff_rate(sys), linearised = most_negative_real_eigenvalue(sys);
+  std::printf("two coincident dampers: reported %.9g, linearised %.9g 1/s\n", reported, linearised);
+  EXPECT_NEAR(linearised, reported, 1e-4 * std::abs(reported));
+}
+
+// A damper sliding along a straight cantilever whose one retained mode is its first bending
+// mode: psi_u = 0 along the member (a straight Euler-Bernoulli member's axial DOFs do not couple
+// to bending), a rigid ground for the sliding. The linearised slip equation is then exactly
+// m x'' + c x' + k x = 0 with c = mu N0 / v_eps (d/dV mu tanh(V / v_eps) = mu / v_eps at 0; the
+// linear ramp has the same slope), m and k with share 1 (the default): both rates are the roots
+// c/(2m) (-1 -+ sqrt(1 - 4 m k / c^2)), the slow one as (k/m) / the stiff one (Vieta).
+// Tolerance 1e-12: round-off of the two formulas (the modal solver leaves |psi_u|^2 ~ 1e-30).
+TEST(StepRates, RegularisedDamperOnARigidGroundHasTheRatesOfItsSlipEquation) {
+  FrameModel<double> frame;
+  const auto root = frame.add_node(0.0, 0.0), tip = frame.add_node(0.0, 0.2);
+  const auto blade = frame.add_member(root, tip, SectionProperties<double>{2.06e11, 7800.0, 6e-5, 2e-11}, 8);
+  frame.clamp(root);
+  ModalOptions<double> mo;
+  mo.num_modes = 1;
+  const ModalBasis<double> basis = compute_modes(frame.assemble(), mo);
+  const double m = 0.01, k = 5e3, N0 = 5.0, mu = 0.3, v_eps = 1e-3;
+  for (RegularisedShape shape : {RegularisedShape::Tanh, RegularisedShape::LinearSaturated}) {
+    std::vector<PointDamper<double>> dampers;
+    dampers.emplace_back(blade, 0.15, m, k, N0, RegularisedLaw<double>(mu, v_eps, shape));
+    const System sys(frame, basis, dampers);
+    const double c = mu * N0 / v_eps;
+    const double stiff = -c / (2 * m) * (1 + std::sqrt(1 - 4 * m * k / (c * c))), slow = k / m / stiff;
+    std::vector<double> got;
+    for (const auto& r : sys.step_rates())
+      if (r.source.find("damper 0 regularised friction slope") != std::string::npos) {
+        EXPECT_EQ(r.lambda.imag(), 0.0);
+        got.push_back(r.lambda.real());
+      }
+    ASSERT_EQ(got.size(), 2u);
+    EXPECT_NEAR(got[0], stiff, 1e-12 * std::abs(stiff));
+    EXPECT_NEAR(got[1], slow, 1e-12 * std::abs(slow));
+  }
+}
+
 // Regression test of "model: fix a non-finite contact coordinate throwing from rhs": RK4 with the
 // paper's step 1e-4 s on 50 modes (h omega_max = 81, 29x the limit) blows up; the NaN contact
 // coordinate of a trial stage used to throw std::invalid_argument out of MemberShapes::evaluate

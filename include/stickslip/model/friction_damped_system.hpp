@@ -1372,14 +1372,15 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::step_rates() const -> std::vect
   using C = std::complex<Scalar>;
   std::vector<StepRate<Scalar>> rates;
   // Roots of lambda^2 + 2 sigma lambda + w^2 = 0 (w > 0 or sigma > 0): the upper one of a
-  // complex pair, both when real (critically damped or more).
+  // complex pair, both when real (critically damped or more; the slow one as w^2 / the stiff
+  // one, without the cancellation of -sigma + sqrt(sigma^2 - w^2)).
   auto add_roots = [&rates](Scalar sigma, Scalar w, const std::string& source) {
     if (sigma < w) {
       rates.push_back({C(-sigma, sqrt(w * w - sigma * sigma)), source});
     } else {
-      const Scalar r = sqrt((sigma - w) * (sigma + w));
-      rates.push_back({C(-sigma - r, Scalar(0)), source});
-      rates.push_back({C(-sigma + r, Scalar(0)), source});
+      const Scalar stiff = -sigma - sqrt((sigma - w) * (sigma + w));
+      rates.push_back({C(stiff, Scalar(0)), source});
+      rates.push_back({C(w * w / stiff, Scalar(0)), source});
     }
   };
   for (Index j = 0; j < n_; ++j) {
