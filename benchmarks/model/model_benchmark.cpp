@@ -99,7 +99,8 @@ class ComposedRhs {
   static Sys make_system(const RhsFrame& f, Index D) {
     std::vector<PointDamper<double>> dampers;
     for (Index i = 0; i < D; ++i)
-      dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3));
+      dampers.emplace_back(f.member, f.X[static_cast<std::size_t>(i)], 0.02, 1e4, 10.0, CoulombLaw<double>(0.35, 0.3),
+                           0.5);
     return Sys(f.frame, f.basis, dampers, {}, ModelOptions<double>{});
   }
   RhsFrame f_;

@@ -16,7 +16,7 @@ int main() {
   mo.num_modes = 6;
   auto basis = compute_modes(frame.assemble(), mo);           // 2. mass-normalised modes
   std::vector<PointDamper<double>> dampers;                   // 4. any number of friction contacts
-  dampers.emplace_back(blade, 0.15, 0.02, 1e4, 5.0, CoulombLaw<double>(0.35, 0.3));
+  dampers.emplace_back(blade, 0.15, 0.01, 5e3, 5.0, CoulombLaw<double>(0.35, 0.3));
   std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(blade, 0.05, LoadDirection::GlobalX, 20, 200)};
   FrictionDampedSystem<double> system(frame, basis, dampers, loads);   // 3 + 4 composed
   auto x = system.initial_state();

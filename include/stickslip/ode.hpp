@@ -10,4 +10,5 @@
 #include "stickslip/ode/linear_part.hpp"
 #include "stickslip/ode/rosenbrock23.hpp"
 #include "stickslip/ode/runge_kutta4.hpp"
+#include "stickslip/ode/step_rate.hpp"
 #include "stickslip/ode/stepper_options.hpp"

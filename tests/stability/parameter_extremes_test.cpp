@@ -98,8 +98,9 @@ TEST_P(DamperMass, CentrifugalPreloadFinishesWithBalancedEnergy) {
   Scene sc;
   const double m = GetParam();
   const auto law = CoulombLaw<double>(0.35, 0.3);
-  const Outcome o = sc.run({PointDamper<double>::centrifugal(sc.s.platform, 0.01, m, 1e4, 0.46, 50.0, law),
-                            PointDamper<double>::centrifugal(sc.s.platform, 0.03, m, 1e4, 0.46, 50.0, law)});
+  // share 1/2: the paper's damper shared by two blades (as two_dampers() above).
+  const Outcome o = sc.run({PointDamper<double>::centrifugal(sc.s.platform, 0.01, m, 1e4, 0.46, 50.0, law, 0.5),
+                            PointDamper<double>::centrifugal(sc.s.platform, 0.03, m, 1e4, 0.46, 50.0, law, 0.5)});
   expect_checks_pass(o);
 }
 INSTANTIATE_TEST_SUITE_P(Stability, DamperMass, ::testing::Values(1e-6, 1e-3, 1.0, 10.0));

@@ -16,6 +16,7 @@
 #include "stickslip/moving_load.hpp"
 #include "stickslip/ode/hybrid_system.hpp"
 #include "stickslip/ode/linear_part.hpp"
+#include "stickslip/ode/step_rate.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -25,6 +26,7 @@
 #include <complex>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -55,6 +57,18 @@ bool law_has_stick_state(const Law& law) {
   return with_law(law, [](const auto& l) {
     return std::decay_t<decltype(l)>::has_stick_state;
   });
+}
+
+/// "2.56 kHz": the frequency omega / (2 pi) of an angular frequency omega [rad/s], 3 digits.
+template <class Scalar>
+std::string format_frequency(Scalar omega) {
+  const double f = static_cast<double>(omega) / (2 * 3.14159265358979323846);
+  const char* unit = f >= 1e6 ? " MHz" : (f >= 1e3 ? " kHz" : " Hz");
+  const double scaled = f >= 1e6 ? f / 1e6 : (f >= 1e3 ? f / 1e3 : f);
+  std::ostringstream os;
+  os.precision(3);
+  os << scaled << unit;
+  return os.str();
 }
 
 inline bool is_slipping(ContactState s) noexcept {
@@ -217,36 +231,31 @@ class FrictionDampedSystem {
   const std::vector<Load>& loads() const noexcept { return loads_; }
   /// Squared natural frequencies omega_j^2 of the retained modes [rad^2/s^2] (eq 25).
   const Vector& omega_squared() const noexcept { return omega2_; }
-  /// Eigenvalues of the linear parts of the equations that an explicit fixed step must resolve
-  /// (upper half-plane of each conjugate pair): every retained mode of eq 25,
-  /// lambda = omega (-zeta + i sqrt(1 - zeta^2)) with zeta = c / (2 omega) (two real rates
-  /// omega (-zeta +- sqrt(zeta^2 - 1)) when zeta >= 1; -c for a damped rigid-body mode), and every damper's free oscillator x'' = -k x / m of eq 11 while it slips,
-  /// lambda = i sqrt(k / m). Stuck dampers need no rates of their own: in any stick pattern and
-  /// at any contact point the structure's squared frequencies are Rayleigh quotients
+  /// The rates an explicit fixed step must resolve, each with what it belongs to (StepRate;
+  /// upper half-plane of each conjugate pair; docs/model.md "Step rates"):
+  ///  * every retained mode of eq 25, lambda = omega (-zeta + i sqrt(1 - zeta^2)) with
+  ///    zeta = c / (2 omega) (two real rates omega (-zeta +- sqrt(zeta^2 - 1)) when zeta >= 1;
+  ///    -c for a damped rigid-body mode): "mode j (f Hz)", j from 1;
+  ///  * every damper's free oscillator x'' = -k x / m of eq 11 while it slips (and a regularised
+  ///    law's saturated branch), lambda = i sqrt(k / m): "damper i slip oscillator sqrt(k/m)";
+  ///  * every damper with a regularised law (no stick state, f = -mu(V) N): its slip equation
+  ///    linearised at V = 0 with N = N0 (the preload, also for an inertial normal load),
+  ///    \f$ \lambda^2 + 2\sigma\lambda + k/m = 0,\ 2\sigma = \mu'(0) N_0 / m + \sum_j \mu_j'(0)
+  ///    N_{0j} \beta_j \f$, where beta_j bounds |psi_u|^2 (the member's modal inertia along u) at
+  ///    damper j's contacts and the sum runs over the regularised dampers (they couple through the
+  ///    member): "damper i regularised friction slope ...". Exact on a rigid member (beta = 0:
+  ///    m x'' + mu'(0) N0 x' + k x = 0); 2 sigma bounds every real rate of the linearised system.
+  /// Stuck dampers need no rates of their own: in any stick pattern and at any contact point the
+  /// structure's squared frequencies are Rayleigh quotients
   /// (q^T Omega^2 q + sum k (b^T q)^2) / (q^T q + sum m (b^T q)^2 + ...), mediants of the omega_j^2
   /// and the k_i / m_i, so they never exceed the largest of these rates (undamped). Used by
-  /// simulate() to refuse a fixed RK4 step above the stability limit.
+  /// simulate() to refuse a fixed RK4 step above the stability limit, naming the binding rate.
+  std::vector<StepRate<Scalar>> step_rates() const;
+
+  /// The eigenvalues of step_rates() without their names.
   std::vector<std::complex<Scalar>> linear_rates() const {
     std::vector<std::complex<Scalar>> rates;
-    rates.reserve(static_cast<std::size_t>(n_ + D_));
-    using std::sqrt;
-    for (Index j = 0; j < n_; ++j) {
-      const Scalar w = sqrt(omega2_[j]);
-      if (!(w > 0)) {  // rigid-body mode q'' + c q' = 0: rates 0 and -c
-        if (modal_damping_[j] > 0) rates.emplace_back(-modal_damping_[j], Scalar(0));
-        continue;
-      }
-      const Scalar zeta = modal_damping_[j] / (Scalar(2) * w);
-      if (zeta < 1) {
-        rates.emplace_back(-zeta * w, w * sqrt(Scalar(1) - zeta * zeta));
-      } else {
-        const Scalar r = w * sqrt(zeta * zeta - Scalar(1));
-        rates.emplace_back(-zeta * w - r, Scalar(0));
-        rates.emplace_back(-zeta * w + r, Scalar(0));
-      }
-    }
-    for (const Damper& d : dampers_)
-      rates.emplace_back(Scalar(0), sqrt(d.effective_stiffness() / d.effective_mass()));
+    for (const auto& r : step_rates()) rates.push_back(r.lambda);
     return rates;
   }
   /// Modal row vector of the displacement of point `eps` of `member` along `direction`
@@ -1421,6 +1430,72 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
   for (Index i = 0; i < D_; ++i)
     if (!moving_[static_cast<std::size_t>(i)])
       evaluate_shapes(i, dampers_[static_cast<std::size_t>(i)].contact_coordinate);
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::step_rates() const -> std::vector<StepRate<Scalar>> {
+  using std::sqrt;
+  using C = std::complex<Scalar>;
+  std::vector<StepRate<Scalar>> rates;
+  // Roots of lambda^2 + 2 sigma lambda + w^2 = 0 (w > 0 or sigma > 0): the upper one of a
+  // complex pair, both when real (critically damped or more; the slow one as w^2 / the stiff
+  // one, without the cancellation of -sigma + sqrt(sigma^2 - w^2)).
+  auto add_roots = [&rates](Scalar sigma, Scalar w, const std::string& source) {
+    if (sigma < w) {
+      rates.push_back({C(-sigma, sqrt(w * w - sigma * sigma)), source});
+    } else {
+      const Scalar stiff = -sigma - sqrt((sigma - w) * (sigma + w));
+      rates.push_back({C(stiff, Scalar(0)), source});
+      rates.push_back({C(w * w / stiff, Scalar(0)), source});
+    }
+  };
+  for (Index j = 0; j < n_; ++j) {
+    const std::string name = "mode " + std::to_string(j + 1);
+    const Scalar w = sqrt(omega2_[j]), c = modal_damping_[j];
+    if (!(w > 0)) {  // rigid-body mode q'' + c q' = 0: rates 0 and -c
+      if (c > 0) rates.push_back({C(-c, Scalar(0)), name + " (rigid-body, damping c = " + detail::format_value(c) + " 1/s)"});
+      continue;
+    }
+    std::string source = name + " (" + detail::format_frequency(w);
+    if (c > 0) source += ", zeta " + detail::format_value(c / (Scalar(2) * w));
+    add_roots(c / Scalar(2), w, source + ")");
+  }
+  // Regularised dampers: c_i = mu_i'(0) N0_i (the friction force's slope at V = 0) and beta_i,
+  // the largest |psi_u|^2 the contact can see: at X0 for a fixed contact, else the largest at the
+  // member's nodes (psi_u is linear on each element, so |psi_u|^2 is convex there).
+  std::vector<Scalar> slope(dampers_.size(), Scalar(0));
+  Scalar member_sum = 0;  // sum_j c_j beta_j
+  for (std::size_t i = 0; i < dampers_.size(); ++i) {
+    const Damper& d = dampers_[i];
+    slope[i] = detail::with_law(d.law, [](const auto& l) -> Scalar {
+      if constexpr (std::decay_t<decltype(l)>::has_stick_state)
+        return Scalar(0);
+      else
+        return l.coefficient_derivative(Scalar(0));
+    }) * d.preload;
+    if (!(slope[i] > 0)) continue;
+    const std::size_t s = static_cast<std::size_t>(damper_shape_[i]);
+    Scalar beta = 0;
+    if (options_.moving_contact) {
+      const Matrix& t = nodal_t_[s];
+      for (Index k = 0; k < t.rows(); k += 3) beta = std::max(beta, t.row(k).squaredNorm());
+    } else {
+      beta = shapes_[s].evaluate(d.contact_coordinate).psi_u.squaredNorm();
+    }
+    member_sum += slope[i] * beta;
+  }
+  for (std::size_t i = 0; i < dampers_.size(); ++i) {
+    const Damper& d = dampers_[i];
+    const std::string name = "damper " + std::to_string(i);
+    const Scalar w = sqrt(d.effective_stiffness() / d.effective_mass());
+    if (w > 0) rates.push_back({C(Scalar(0), w), name + " slip oscillator sqrt(k/m) (" + detail::format_frequency(w) + ")"});
+    if (!(slope[i] > 0)) continue;
+    const Scalar two_sigma = slope[i] / d.effective_mass() + member_sum;
+    add_roots(two_sigma / Scalar(2), w,
+              name + " regularised friction slope mu'(0) N0 / m + sum mu'(0) N0 |psi_u|^2 = " +
+                  detail::format_value(two_sigma) + " 1/s");
+  }
+  return rates;
 }
 
 template <class Scalar_, class Law_, int Modes>

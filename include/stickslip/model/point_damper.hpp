@@ -25,13 +25,14 @@ using FrictionLawVariant = std::variant<CoulombLaw<Scalar>, StribeckLaw<Scalar>,
 /// It slides along the member's local axis u, follows the member's transverse motion w, is held
 /// by a spring k to its own support along u, and is pressed against the member by the preload
 /// N0 (paper: N0 = F/2 = m r Omega^2 / 2, the centrifugal force shared by two blades). The share
-/// factor s scales the damper's inertia and spring in this blade's equations (paper eqs 11-14:
-/// s = 1/2, "a damper shared by two blades"): effective mass s m, effective spring s k.
+/// factor s scales the damper's inertia and spring in this structure's equations: effective mass
+/// s m, effective spring s k. It defaults to 1 (the damper acts on this structure alone); the
+/// paper's blade scene passes s = 1/2 (eqs 11-14, "a damper shared by two blades").
 template <class Scalar, class Law = FrictionLawVariant<Scalar>>
 struct PointDamper {
   /// Damper on `member` at contact coordinate X0 with mass m, spring k, preload N0 and `law`.
   PointDamper(MemberId member_, Scalar contact_coordinate_, Scalar mass_, Scalar stiffness_,
-              Scalar preload_, Law law_, Scalar share_ = Scalar(0.5))
+              Scalar preload_, Law law_, Scalar share_ = Scalar(1))
       : member(member_), contact_coordinate(contact_coordinate_), mass(mass_),
         stiffness(stiffness_), preload(preload_), share(share_), law(std::move(law_)) {}
 
@@ -40,7 +41,7 @@ struct PointDamper {
   Scalar mass{};                 ///< damper mass m [kg] (> 0)
   Scalar stiffness{};            ///< spring k to the damper's support along u [N/m] (>= 0)
   Scalar preload{};              ///< N0, this blade's share of the normal load [N] (>= 0)
-  Scalar share = Scalar(0.5);    ///< share factor s in (0, 1]
+  Scalar share = Scalar(1);      ///< share factor s in (0, 1] (1/2 in the paper's blade scene)
   Law law;                       ///< friction law
   ContactState initial_state = ContactState::Stick;  ///< state requested at t0
   /// +1: the damper presses the member along its local +w axis (90 degrees counter-clockwise
@@ -61,7 +62,7 @@ struct PointDamper {
   /// Damper whose preload comes from the centrifugal force: N0 = s m r Omega^2 (paper section 2).
   static PointDamper centrifugal(MemberId member, Scalar contact_coordinate, Scalar mass,
                                  Scalar stiffness, Scalar radius, Scalar spin, Law law,
-                                 Scalar share = Scalar(0.5)) {
+                                 Scalar share = Scalar(1)) {
     detail::require_non_negative("PointDamper::centrifugal", "radius", radius);
     detail::require_finite("PointDamper::centrifugal", "spin", spin);
     return PointDamper(member, contact_coordinate, mass, stiffness,

@@ -14,6 +14,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 namespace stickslip {
 
@@ -59,8 +60,8 @@ struct RunOptions {
   /// Tolerances, step sizes, output interval and Zeno limits (stickslip/ode/stepper_options.hpp).
   StepperOptions<Scalar> stepper{};
   /// With RungeKutta4: refuse (std::invalid_argument) a fixed step above RK4's stability limit
-  /// for the system's linear rates, when the system reports them (linear_rates()). Switch off
-  /// only to study what an unstable step does.
+  /// for the system's rates, when the system reports them (step_rates(), else linear_rates());
+  /// the message names the binding rate. Switch off only to study what an unstable step does.
   bool check_stability_limit = true;
 };
 
@@ -82,6 +83,13 @@ template <class System>
 struct has_linear_rates<System, std::void_t<decltype(std::declval<const System&>().linear_rates())>>
     : std::true_type {};
 
+/// Detects step_rates() (rates with names, StepRate), preferred to linear_rates().
+template <class System, class = void>
+struct has_step_rates : std::false_type {};
+template <class System>
+struct has_step_rates<System, std::void_t<decltype(std::declval<const System&>().step_rates())>>
+    : std::true_type {};
+
 /// |R(z)| of the classical Runge-Kutta method, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24: one step
 /// multiplies the solution of y' = lambda y by R(h lambda).
 template <class Scalar>
@@ -89,36 +97,53 @@ Scalar rk4_amplification(std::complex<Scalar> z) {
   return std::abs(Scalar(1) + z * (Scalar(1) + z * (Scalar(0.5) + z * (Scalar(1) / 6 + z / Scalar(24)))));
 }
 
-/// Throws std::invalid_argument naming options.fixed_step when |R(h lambda)| > 1 for a rate of
-/// `rates` (the step would amplify that component at every step). The message names the binding
-/// rate and the largest stable step: the smallest, over the offending rates, of the step where
-/// |R| reaches 1 along the ray h lambda (found by bisection; RK4's region meets each ray of the
-/// left half-plane in one interval).
-template <class Scalar, class Rates>
-void require_rk4_stable(const Rates& rates, Scalar h) {
+/// Throws std::invalid_argument naming options.fixed_step when |R(h lambda)| > 1 (or is not
+/// finite) for a rate of `rates` (StepRate: the step would amplify that component at every
+/// step). The message names the binding rate's source and the largest stable step: the
+/// smallest, over the offending rates, of the step where |R| reaches 1 along the ray h lambda
+/// (found by bisection; RK4's region meets each ray of the left half-plane in one interval).
+template <class Scalar>
+void require_rk4_stable(const std::vector<StepRate<Scalar>>& rates, Scalar h) {
   const Scalar slack = 1 + 64 * std::numeric_limits<Scalar>::epsilon();  // round-off at |R| = 1
+  auto amplified = [slack](std::complex<Scalar> z) { return !(rk4_amplification(z) <= slack); };
   Scalar h_stable = h;
-  std::complex<Scalar> binding{};
-  for (const auto& lambda : rates) {
-    if (!(rk4_amplification(h * lambda) > slack)) continue;
+  const StepRate<Scalar>* binding = nullptr;
+  for (const auto& rate : rates) {
+    if (!amplified(h * rate.lambda)) continue;
     Scalar lo = 0, hi = h;
     for (int it = 0; it < 80; ++it) {
       const Scalar mid = (lo + hi) / 2;
-      (rk4_amplification(mid * lambda) > slack ? hi : lo) = mid;
+      (amplified(mid * rate.lambda) ? hi : lo) = mid;
     }
-    if (lo < h_stable) {
+    if (binding == nullptr || lo < h_stable) {
       h_stable = lo;
-      binding = lambda;
+      binding = &rate;
     }
   }
-  if (h_stable == h) return;
+  if (binding == nullptr) return;
   throw_invalid("simulate",
-                "options.stepper.fixed_step is above RungeKutta4's stability limit for the linear "
-                "rate |lambda| = " + format_value(std::abs(binding)) + " 1/s (|R(h lambda)| = " +
-                    format_value(rk4_amplification(h * binding)) + " > 1; stable up to h = " +
+                "options.stepper.fixed_step is above RungeKutta4's stability limit for " +
+                    binding->source + ": rate lambda = " + format_value(binding->lambda) +
+                    ", |lambda| = " + format_value(std::abs(binding->lambda)) + " 1/s (|R(h lambda)| = " +
+                    format_value(rk4_amplification(h * binding->lambda)) + " > 1; stable up to h = " +
                     format_value(h_stable) + " s): use a smaller step, fewer modes, damping of the "
-                    "high modes or an adaptive method, or set RunOptions::check_stability_limit = false",
+                    "high modes, a wider regularisation or an adaptive method, or set "
+                    "RunOptions::check_stability_limit = false",
                 h);
+}
+
+/// The system's rates for the RK4 check: step_rates() when it has them, else linear_rates()
+/// named "linear rate k".
+template <class System>
+std::vector<StepRate<typename System::Scalar>> named_step_rates(const System& system) {
+  if constexpr (has_step_rates<System>::value) {
+    return system.step_rates();
+  } else {
+    std::vector<StepRate<typename System::Scalar>> rates;
+    for (const auto& lambda : system.linear_rates())
+      rates.push_back({lambda, "linear rate " + std::to_string(rates.size())});
+    return rates;
+  }
 }
 
 }  // namespace detail
@@ -177,9 +202,9 @@ SimulationResult<System> simulate_dispatch(System& system, typename System::Mode
   if constexpr (has_validate_state<System>::value) system.validate_state(mode, x0, "simulate");
   switch (options.integrator) {
     case Integrator::RungeKutta4:
-      if constexpr (has_linear_rates<System>::value) {
+      if constexpr (has_step_rates<System>::value || has_linear_rates<System>::value) {
         if (options.check_stability_limit && options.stepper.fixed_step > 0)
-          require_rk4_stable(system.linear_rates(), options.stepper.fixed_step);
+          require_rk4_stable(named_step_rates(system), options.stepper.fixed_step);
       }
       return simulate_with<System, RungeKutta4>(system, std::move(mode), t0, x0, t_end,
                                                 options.stepper, observer);
@@ -199,9 +224,10 @@ SimulationResult<System> simulate_dispatch(System& system, typename System::Mode
 /// Integrates `system` from (t0, x0) in `mode` to t_end with the chosen integrator, calling
 /// `observer` (any observer of docs/ode.md, passed on as an ObserverRef, so that the steppers are
 /// compiled once per system type whatever the observer).
-/// With RungeKutta4 and a system that reports linear_rates() (FrictionDampedSystem), a fixed step
-/// above the stability limit of one of those rates throws std::invalid_argument before any step
-/// (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
+/// With RungeKutta4 and a system that reports step_rates() or linear_rates()
+/// (FrictionDampedSystem), a fixed step above the stability limit of one of those rates throws
+/// std::invalid_argument before any step, naming the binding rate's source and the largest stable
+/// step (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
 /// (FrictionDampedSystem) checks the sizes of x0 and mode first (std::invalid_argument).
 /// Integrator::Exponential throws std::invalid_argument ("options.integrator") for a system
 /// without linear_part.
