@@ -6,7 +6,7 @@
 #include "stickslip/contact.hpp"
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/friction_damped_system.hpp"
-#include "stickslip/moving_load.hpp"
+#include "stickslip/model/point_load.hpp"
 
 #include <Eigen/Core>
 

@@ -5,7 +5,7 @@
 
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/normal_load.hpp"
-#include "stickslip/moving_load.hpp"
+#include "stickslip/model/point_load.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
