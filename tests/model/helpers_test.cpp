@@ -277,6 +277,16 @@ TEST(DamperStatistics, HighPreloadSticksThroughoutTheWindow) {
     EXPECT_EQ(st.regime, DamperRegime::Stick);
     EXPECT_NEAR(st.observed_time, w.t_end - w.t_start, 1e-15);  // a sum of step lengths
   }
+  // The documented use: the statistics alone as simulate()'s observer, over a window that
+  // reaches past the run's end (only the covered part counts).
+  System::State x0 = sys.initial_state();
+  DamperStates mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+  DamperStatistics<System> alone(sys, mode, 0.0, x0, {0.1, 1.0, kPeriod});
+  ASSERT_TRUE(simulate(sys, mode, 0.0, x0, 0.12, RunOptions<double>{}, alone).ok());
+  EXPECT_NEAR(alone.statistics(1).observed_time, 0.02, 1e-15);
+  EXPECT_EQ(alone.statistics(1).stick_fraction, 1.0);
+  EXPECT_THROW(alone.statistics(2), std::invalid_argument);
 }
 
 TEST(DamperStatistics, StickSlipMatchesTheEventLogAndAFineSampling) {
