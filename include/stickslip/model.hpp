@@ -4,9 +4,12 @@
 
 #include "stickslip/model/contact_point.hpp"
 #include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/damper_statistics.hpp"
 #include "stickslip/model/friction_damped_system.hpp"
 #include "stickslip/model/model_options.hpp"
 #include "stickslip/model/normal_load.hpp"
 #include "stickslip/model/point_damper.hpp"
 #include "stickslip/model/point_load.hpp"
 #include "stickslip/model/simulate.hpp"
+#include "stickslip/model/static_preload.hpp"
+#include "stickslip/model/stuck_modes.hpp"
