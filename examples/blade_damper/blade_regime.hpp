@@ -1,9 +1,12 @@
 #pragma once
 /// \file blade_regime.hpp
 /// \brief The example's one regime rule (names, thresholds, a run's regime) and the choice of
-/// one representative preload per regime from a preload sweep. Standard library only, so that
-/// its unit test compiles in seconds; the console, CSV/JSON records, folder names, plots
-/// (plot.py reads the names from sweep.json) and docs/blade_damper.md all follow it.
+/// one representative preload per regime from a preload sweep. The thresholds are the library's
+/// (stickslip/model/damper_statistics.hpp, classify_regime); the console, CSV/JSON records,
+/// folder names, plots (plot.py reads the names from sweep.json) and docs/blade_damper.md all
+/// follow it.
+
+#include <stickslip/model/damper_statistics.hpp>
 
 #include <array>
 #include <cmath>
@@ -22,9 +25,9 @@ enum class Regime { GrossSlip, StickSlip, Stick };
 inline constexpr std::array<Regime, 3> kRegimes{Regime::GrossSlip, Regime::StickSlip, Regime::Stick};
 
 /// A damper in gross slip is stuck for less than this fraction of the record window.
-inline constexpr double kGrossSlipBelow = 0.05;
+inline constexpr double kGrossSlipBelow = stickslip::regime_gross_slip_below;
 /// A damper sticks when stuck for at least this fraction of the record window.
-inline constexpr double kStickFrom = 0.999;
+inline constexpr double kStickFrom = stickslip::regime_stick_from;
 
 /// The regime's name everywhere (console, records, plots, docs).
 inline const char* to_string(Regime r) {

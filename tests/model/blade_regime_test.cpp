@@ -187,4 +187,11 @@ TEST(BladeRegime, RandomSweepsMatchTheDefinitionByBruteForce) {
   }
 }
 
+// The example names regimes by the library's rule: the same name for every stick fraction, at
+// and around both thresholds.
+TEST(BladeRegime, NamesEveryFractionAsTheLibrarysClassifyRegime) {
+  for (double s : {0.0, 0.01, 0.0499999, 0.05, 0.05000001, 0.3, 0.5, 0.998, 0.9989999, 0.999, 0.9995, 1.0})
+    EXPECT_STREQ(blade::to_string(blade::damper_regime(s)), stickslip::to_string(stickslip::classify_regime(s))) << s;
+}
+
 }  // namespace blade_regime_test

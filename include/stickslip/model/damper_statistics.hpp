@@ -40,15 +40,20 @@ inline const char* to_string(DamperRegime r) noexcept {
   return "unknown";
 }
 
-/// The one regime rule (that of examples/blade_damper and docs/blade_damper.md): stick fraction
-/// >= 0.999 is Stick, < 0.05 GrossSlip, anything between StickSlip; NaN (no time observed in the
-/// window) NotReached.
+/// classify_regime: a damper stuck at least this fraction of the window sticks.
+inline constexpr double regime_stick_from = 0.999;
+/// classify_regime: a damper stuck less than this fraction of the window is in gross slip.
+inline constexpr double regime_gross_slip_below = 0.05;
+
+/// The one regime rule (that of examples/blade_damper and docs/blade_damper.md, which use these
+/// thresholds): stick fraction >= regime_stick_from (0.999) is Stick, < regime_gross_slip_below
+/// (0.05) GrossSlip, anything between StickSlip; NaN (no time observed in the window) NotReached.
 template <class Scalar>
 DamperRegime classify_regime(Scalar stick_fraction) noexcept {
   using std::isnan;
   if (isnan(stick_fraction)) return DamperRegime::NotReached;
-  if (stick_fraction >= Scalar(0.999)) return DamperRegime::Stick;
-  if (stick_fraction < Scalar(0.05)) return DamperRegime::GrossSlip;
+  if (stick_fraction >= Scalar(regime_stick_from)) return DamperRegime::Stick;
+  if (stick_fraction < Scalar(regime_gross_slip_below)) return DamperRegime::GrossSlip;
   return DamperRegime::StickSlip;
 }
 
@@ -56,9 +61,9 @@ DamperRegime classify_regime(Scalar stick_fraction) noexcept {
 /// counted per [s].
 template <class Scalar>
 struct StatisticsWindow {
-  Scalar t_start{};
-  Scalar t_end{};
-  Scalar period{};
+  Scalar t_start{};  ///< start of the window [s]
+  Scalar t_end{};    ///< end of the window [s] (> t_start)
+  Scalar period{};   ///< excitation period the switches are counted per [s] (> 0)
 };
 
 /// One damper's statistics over the observed part of the window.
@@ -93,12 +98,13 @@ struct DamperWindowStatistics {
 template <class System>
 class DamperStatistics {
  public:
-  using Scalar = typename System::Scalar;
-  using State = typename System::State;
-  using Mode = typename System::Mode;
-  using Index = Eigen::Index;
-  using Statistics = DamperWindowStatistics<Scalar>;
+  using Scalar = typename System::Scalar;  ///< the system's scalar
+  using State = typename System::State;    ///< the system's state vector
+  using Mode = typename System::Mode;      ///< DamperStates
+  using Index = Eigen::Index;              ///< damper index
+  using Statistics = DamperWindowStatistics<Scalar>;  ///< one damper's result
 
+  /// Observes a run of `system` that starts from (mode0, t0, x0), accumulating over `window`.
   DamperStatistics(System& system, const Mode& mode0, Scalar t0, const State& x0,
                    StatisticsWindow<Scalar> window)
       : system_(system), window_(window), prev_t_(t0) {
@@ -156,8 +162,10 @@ class DamperStatistics {
     if (regularised_) read_velocities(record.to, record.t, x_after);  // a reset may change V
   }
 
+  /// Samples are not needed (the statistics come from steps and events); always continues.
   bool on_sample(Scalar, const State&, const Mode&) { return true; }
 
+  /// Number of dampers observed.
   Index num_dampers() const noexcept { return static_cast<Index>(v_eps_.size()); }
 
   /// Damper i's statistics over the part of the window observed so far.

@@ -18,8 +18,8 @@ namespace stickslip {
 /// A state and a discrete mode to start a run from.
 template <class System>
 struct StartState {
-  typename System::State x;
-  typename System::Mode mode;
+  typename System::State x;     ///< the state
+  typename System::Mode mode;   ///< the dampers' states (all stuck where they can stick)
 };
 
 /// The static equilibrium of the structure under the preloads N0 with every damper stuck at X0

@@ -19,8 +19,8 @@ namespace stickslip {
 /// Undamped natural modes of the all-stuck system on the retained modal basis.
 template <class Scalar>
 struct StuckModes {
-  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;  ///< column vector
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  ///< dense matrix
   Vector omega;   ///< natural circular frequencies [rad/s], ascending (0 for a rigid-body mode)
   Matrix shapes;  ///< column j: mode j in modal coordinates q, normalised to v^T M v = 1
 };

@@ -13,8 +13,8 @@ namespace stickslip {
 /// friction slope ...").
 template <class Scalar>
 struct StepRate {
-  std::complex<Scalar> lambda;
-  std::string source;
+  std::complex<Scalar> lambda;  ///< the rate [1/s] (eigenvalue of the linearised equations)
+  std::string source;           ///< what it belongs to, for messages
 };
 
 }  // namespace stickslip
