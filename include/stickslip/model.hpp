@@ -10,3 +10,4 @@
 #include "stickslip/model/point_damper.hpp"
 #include "stickslip/model/point_load.hpp"
 #include "stickslip/model/simulate.hpp"
+#include "stickslip/model/trade_study.hpp"
