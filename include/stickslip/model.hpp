@@ -13,3 +13,4 @@
 #include "stickslip/model/simulate.hpp"
 #include "stickslip/model/static_preload.hpp"
 #include "stickslip/model/stuck_modes.hpp"
+#include "stickslip/model/trade_study.hpp"
