@@ -23,9 +23,9 @@ namespace stickslip {
 /// What a variant runs: its system, the initial mode and the initial state at TradeStudyOptions::t0.
 template <class System>
 struct TradeSetup {
-  System system;
-  typename System::Mode mode;
-  typename System::State x0;
+  System system;                ///< the variant's system
+  typename System::Mode mode;   ///< initial discrete mode
+  typename System::State x0;    ///< initial state
 };
 
 /// One variant of a trade study: a name, a factory building its scene (so that model choices -
@@ -33,15 +33,15 @@ struct TradeSetup {
 /// run options. The factory is called once per repeat, outside the timed part.
 template <class System>
 struct TradeVariant {
-  std::string name;
-  std::function<TradeSetup<System>()> setup;
-  RunOptions<typename System::Scalar> run{};
+  std::string name;                           ///< row name
+  std::function<TradeSetup<System>()> setup;  ///< builds the scene of one run
+  RunOptions<typename System::Scalar> run{};  ///< integrator and stepper options
 };
 
 /// Options of trade_study().
 template <class System>
 struct TradeStudyOptions {
-  using Scalar = typename System::Scalar;
+  using Scalar = typename System::Scalar;  ///< the system's scalar
   Scalar t0 = 0;                ///< start time of every run
   Scalar t_end = 1;             ///< end time of every run
   /// Common sample grid t0, t0 + dt, ... of the compared output; overrides each variant's
@@ -62,14 +62,14 @@ struct TradeStudyOptions {
 /// Errors are NaN when the run did not reach t_end (status != Success or it did not start).
 template <class Scalar>
 struct TradeRow {
-  std::string name;
+  std::string name;                 ///< the variant's name
   bool started = false;             ///< false: building or starting the run threw (see message)
   Status status = Status::Success;  ///< how the run ended (meaningful when started)
   std::string message;              ///< the run's message, or the exception's what()
-  Scalar t_reached = std::numeric_limits<Scalar>::quiet_NaN();
+  Scalar t_reached = std::numeric_limits<Scalar>::quiet_NaN();  ///< time the run reached
   double cpu_seconds = 0;           ///< median over the repeats of std::clock() process CPU time
-  long rhs_evaluations = 0;
-  long events = 0;
+  long rhs_evaluations = 0;         ///< right-hand-side evaluations of the last repeat
+  long events = 0;                  ///< events (transitions) of the last repeat
   /// max_k |y_k - y_ref,k| / max_k |y_ref,k| over the common sample grid.
   Scalar output_error_max = std::numeric_limits<Scalar>::quiet_NaN();
   /// sqrt(mean_k (y_k - y_ref,k)^2) / max_k |y_ref,k|.
@@ -78,6 +78,7 @@ struct TradeRow {
   Scalar switch_time_error = std::numeric_limits<Scalar>::quiet_NaN();
   long missed_switches = 0;  ///< reference switches without a partner in the run
   long extra_switches = 0;   ///< switches of the run without a partner in the reference
+  /// TradeStudyOptions::energy_residual of the run (NaN without one)
   Scalar energy_residual = std::numeric_limits<Scalar>::quiet_NaN();
   /// A finished run (started and status Success).
   bool ok() const noexcept { return started && status == Status::Success; }
