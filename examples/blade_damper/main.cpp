@@ -2,6 +2,7 @@
 // built from stickslip's components: runs preloads, writes CSV/JSON records and spectra, a
 // preload sweep with a regime map, re-runs one representative preload per regime found
 // (blade_regime.hpp) with full records, and prints a summary. `blade_damper --help` for options.
+#include "blade_compare.hpp"
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
@@ -45,6 +46,9 @@ struct Cli {
   double sweep_duration = -1;  // < 0: same as duration
   int threads = 0;
   std::string out = "out";
+  std::string compare;            // --compare: variants of the trade study (empty: none)
+  int compare_repeats = 3;
+  double compare_reference_rtol = 1e-10;
 };
 
 const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
@@ -74,6 +78,15 @@ Usage: blade_damper [options]
   --regularised v_eps    tanh friction with mu_k and this velocity scale [m/s]
   --beyond-ends          continue the platform's end elements beyond its ends (extrapolated
                          shapes) instead of stopping when a contact reaches an end
+  --compare v1,v2,...    speed/accuracy trade of variants of this scene (at the first
+                         preload, for --duration) against a tight DOPRI reference: rows
+                         in OUT/compare.csv, plot with plot.py. Variants: modes=N, rtol=R,
+                         regularised=V, constant-normal-load, fixed-contact, damping=Z,
+                         events=root|bisection, elements=B:P, integrator=NAME[:X] (X: rk4's
+                         step or the others' rtol), e.g. integrator=rk4:1e-4
+  --compare-repeats n    runs per variant, CPU time = median (default 3)
+  --compare-reference-rtol r  the reference's rtol (default 1e-10; atol = 1e-3 r), validated
+                         by a rerun at r / 100
   --threads n            worker threads of the sweep (default: all cores)
   --out DIR              output folder (default out)
   --help                 this text
@@ -151,6 +164,12 @@ Cli parse(int argc, char** argv) {
       c.params.model.end_policy = EndPolicy::Extrapolate;
     } else if (a == "--regularised") {
       c.params.regularised_v_eps = std::stod(need(i));
+    } else if (a == "--compare") {
+      c.compare = need(i);
+    } else if (a == "--compare-repeats") {
+      c.compare_repeats = std::stoi(need(i));
+    } else if (a == "--compare-reference-rtol") {
+      c.compare_reference_rtol = std::stod(need(i));
     } else if (a == "--threads") {
       c.threads = std::stoi(need(i));
     } else if (a == "--out") {
@@ -405,6 +424,46 @@ void run_representatives(const Cli& c, const fs::path& out, const std::vector<do
   }
 }
 
+/// --compare: the library's trade_study() on this scene (blade_compare.hpp); rows in
+/// OUT/compare.csv and on the console.
+int run_compare(const Cli& c, const fs::path& out) {
+  blade::BladeParameters base = c.params;
+  base.preload = c.preloads.empty() ? 12.0 : c.preloads.front();
+  const auto variants_in = blade::parse_compare_list(c.compare, base, c.settings.run);
+  RunOptions<double> ref_run = c.settings.run;
+  ref_run.integrator = Integrator::DormandPrince54;
+  ref_run.stepper.rtol = c.compare_reference_rtol;
+  ref_run.stepper.atol = 1e-3 * c.compare_reference_rtol;
+  const auto reference = blade::trade_variant("reference dopri5 rtol=" + fmt(c.compare_reference_rtol), base, ref_run);
+  std::vector<TradeVariant<blade::BladeScene::System>> variants;
+  for (const auto& v : variants_in) variants.push_back(blade::trade_variant(v.name, v.params, v.run));
+  const auto options = blade::compare_options(base, c.settings.duration, c.settings.sample_interval, c.compare_repeats);
+  std::printf("compare: N0 = %g N, %g s, samples every %g s, %d repeats, output = blade tip displacement\n",
+              base.preload, c.settings.duration, c.settings.sample_interval, c.compare_repeats);
+  const auto study = trade_study(reference, variants, options);
+  std::printf("reference: %s (%s, %.3g s CPU); validation: %s -> reference tip error <= %.2e of its max\n",
+              study.reference.name.c_str(), study.reference.ok() ? "ok" : study.reference.message.c_str(),
+              study.reference.cpu_seconds, study.validation_method.c_str(), study.validation.output_error_max);
+  std::ofstream o(out / "compare.csv");
+  std::vector<TradeRow<double>> rows{study.reference, study.validation};
+  rows.insert(rows.end(), study.rows.begin(), study.rows.end());
+  write_trade_csv(o, rows);
+  std::printf("%-34s %10s %10s %7s %11s %11s %10s %6s %6s %10s\n", "variant", "CPU [s]", "RHS", "events",
+              "tip err max", "tip err rms", "switch dt", "missed", "extra", "energy res");
+  for (const auto& r : study.rows) {
+    if (!r.ok()) {
+      std::printf("%-34s failed: %s\n", r.name.c_str(), r.message.c_str());
+      continue;
+    }
+    std::printf("%-34s %10.3g %10ld %7ld %11.2e %11.2e %10.2e %6ld %6ld %10.2e\n", r.name.c_str(), r.cpu_seconds,
+                r.rhs_evaluations, r.events, r.output_error_max, r.output_error_rms, r.switch_time_error,
+                r.missed_switches, r.extra_switches, r.energy_residual);
+  }
+  std::printf("rows in %s (plot: /usr/bin/python3 examples/blade_damper/plot.py %s)\n",
+              (out / "compare.csv").c_str(), out.c_str());
+  return study.reference.ok() ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -418,6 +477,7 @@ int main(int argc, char** argv) {
   try {
     fs::create_directories(c.out);
     const fs::path out(c.out);
+    if (!c.compare.empty()) return run_compare(c, out);
     std::printf("blade_damper: paper section 3 parameters, %d modes, %d + %d elements, integrator %s "
                 "(rtol %.0e), duration %.1f s, output in %s/\n",
                 c.params.modes, c.params.blade_elements, c.params.platform_elements,

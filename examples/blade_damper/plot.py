@@ -3,7 +3,8 @@
 
 Usage: /usr/bin/python3 examples/blade_damper/plot.py OUT_DIR
 Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv, sweep.csv and sweep.json written by
-blade_damper, and the same records of each regime's representative run in OUT_DIR/regime_*/.
+blade_damper, and the same records of each regime's representative run in OUT_DIR/regime_*/;
+with compare.csv (blade_damper --compare) also the work-precision figure compare.png.
 Regime names come from sweep.json (the example's one rule, blade_regime.hpp), not from here.
 """
 import csv
@@ -165,6 +166,37 @@ def plot_sweep(out, info):
     return [png]
 
 
+def plot_compare(out):
+    """compare.csv (rows: reference, its validation, then the variants): tip error against CPU."""
+    path = os.path.join(out, "compare.csv")
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    if len(rows) < 2:
+        return []
+    floor = float(rows[1]["output_error_max"])
+    fig, ax = plt.subplots(figsize=(7.5, 5))
+    for r in rows[2:]:
+        cpu, err = float(r["cpu_seconds"]), float(r["output_error_max"])
+        if r["status"] != "success" or not (err > 0) or not (cpu > 0):
+            continue
+        ax.loglog(cpu, err, "o")
+        ax.annotate(r["name"], (cpu, err), textcoords="offset points", xytext=(4, 3), fontsize=7)
+    if floor > 0:
+        ax.axhline(floor, color="gray", ls="--", lw=0.8, label="reference's own error (validation)")
+        ax.legend(fontsize=8)
+    ax.set_xlabel("CPU time [s] (median of repeats)")
+    ax.set_ylabel("blade tip error, max / max |tip| of the reference")
+    ax.set_title(f"Speed/accuracy trade against {rows[0]['name']}")
+    ax.grid(True, which="both", lw=0.3)
+    fig.tight_layout()
+    png = os.path.join(out, "compare.png")
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return [png]
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
     made = []
@@ -178,6 +210,7 @@ def main():
             tag = os.path.basename(path)[len("history_"):-len(".csv")]
             made += plot_run(folder, tag, f"{rep['regime']} (N0 = {rep['preload_N']:.3g} N)")
     made += plot_sweep(out, info)
+    made += plot_compare(out)
     print(f"plot.py: wrote {len(made)} PNG figures in {out}/ and its regime_*/ folders")
 
 
