@@ -5,10 +5,11 @@
 #
 #   scripts/work_precision.sh [--with-micro] [--out DIR] [--build DIR] [--threads N]
 #
-# Defaults: --out docs/performance  --build build/release-bench  --threads $(nproc)
+# Defaults: --out out/work_precision (untracked; pass --out docs/performance to refresh the
+# committed data of docs/performance.md)  --build build/release-bench  --threads $(nproc)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=docs/performance
+out=out/work_precision
 build=build/release-bench
 threads=$(nproc 2>/dev/null || echo 2)
 micro=0
