@@ -150,10 +150,9 @@ inline stickslip::TradeStudyOptions<BladeScene::System> compare_options(const Bl
     // Member 1 is the blade (make_blade_scene adds the platform first); it carries the load.
     return sys.point_shape(1, L1, stickslip::LoadDirection::GlobalX).dot(x.head(sys.num_modes()));
   };
-  o.energy_residual = [](const System& sys, const stickslip::SimulationResult<System>& r) {
+  o.energy_residual = [](System& sys, const stickslip::SimulationResult<System>& r) {
     if (!sys.options().energy_audit) return std::numeric_limits<double>::quiet_NaN();
-    System copy = sys;  // energy_balance evaluates (non-const)
-    const auto b = copy.energy_balance(r.mode, r.t, r.x, 0.0);
+    const auto b = sys.energy_balance(r.mode, r.t, r.x, 0.0);
     const double scale = std::max({std::abs(b.mechanical), std::abs(b.external_work), b.friction_dissipation,
                                    b.viscous_dissipation});
     return scale > 0 ? std::abs(b.residual) / scale : std::abs(b.residual);

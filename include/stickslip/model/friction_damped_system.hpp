@@ -494,7 +494,9 @@ class FrictionDampedSystem {
     d.template segment<Modes>(n_, n_) = modal(e.qdd);
     d.segment(x_offset(), D_) = x.segment(xd_offset(), D_);
     d.segment(xd_offset(), D_) = e.xdd;
-    if (options_.moving_contact) d.segment(contact_offset(), D_) = e.V.cwiseProduct(moving_mask_);
+    if (options_.moving_contact)
+      for (Index i = 0; i < D_; ++i)
+        d[contact_offset() + i] = moving_[static_cast<std::size_t>(i)] ? e.V[i] : Scalar(0);
   }
 
   Vector load_vector(std::size_t shape, const Load& load) const {
@@ -1325,10 +1327,8 @@ class FrictionDampedSystem {
   std::uint64_t lp_version_ = 0;
   LinearPart<Scalar> lp_cache_;
 
-  // Per damper: its contact point moves (ModelOptions::moving_contact and PointDamper::contact_point),
-  // and the same as 1 / 0 for the X' rows.
+  // Per damper: its contact point moves (ModelOptions::moving_contact and PointDamper::contact_point).
   std::vector<bool> moving_;
-  Vector moving_mask_;
 
   std::vector<ContactEvent> events_;
   std::vector<Index> involved_;
@@ -1363,8 +1363,6 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
   // The state carries contact coordinates when at least one contact moves.
   options_.moving_contact = std::find(moving_.begin(), moving_.end(), true) != moving_.end();
   if (!options_.moving_contact) options_.convective_terms = false;
-  moving_mask_.resize(D_);
-  for (Index i = 0; i < D_; ++i) moving_mask_[i] = moving_[static_cast<std::size_t>(i)] ? Scalar(1) : Scalar(0);
 
   omega2_ = basis.omega().array().square().matrix();
   // c_j of the basis (2 zeta_j omega_j, or alpha + beta omega_j^2 with Rayleigh damping, which

@@ -52,7 +52,7 @@ struct TradeStudyOptions {
   std::function<Scalar(const System&, Scalar, const typename System::State&)> output;
   /// Optional energy residual of a finished run (e.g. an energy audit's closing error), called
   /// with the system of the last repeat and its result; empty: reported as NaN.
-  std::function<Scalar(const System&, const SimulationResult<System>&)> energy_residual;
+  std::function<Scalar(System&, const SimulationResult<System>&)> energy_residual;
   /// The reference is validated by a rerun with rtol and atol divided by this factor (adaptive
   /// and exponential integrators) or with the fixed step divided by it (RungeKutta4).
   Scalar validation_factor = 100;

@@ -113,6 +113,16 @@ struct has_on_event_with_state<
     std::void_t<decltype(std::declval<O&>().on_event(std::declval<const Rec&>(),
                                                      std::declval<const X&>()))>>
     : std::true_type {};
+
+/// observer.on_event(record, x_after) when the observer has it, else on_event(record).
+template <class Observer, class Scalar, class Mode, class State>
+void notify_event(Observer& obs, const EventRecord<Scalar, Mode>& record, const State& x_after) {
+  if constexpr (has_on_event_with_state<Observer, EventRecord<Scalar, Mode>, State>::value) {
+    obs.on_event(record, x_after);
+  } else {
+    obs.on_event(record);
+  }
+}
 }  // namespace detail
 
 /// Result of HybridStepper::integrate.

@@ -47,11 +47,7 @@ class ObserverRef {
   }
   template <class Observer>
   static void event_of(void* o, const Record& record, const State& x_after) {
-    if constexpr (detail::has_on_event_with_state<Observer, Record, State>::value) {
-      static_cast<Observer*>(o)->on_event(record, x_after);
-    } else {
-      static_cast<Observer*>(o)->on_event(record);
-    }
+    detail::notify_event(*static_cast<Observer*>(o), record, x_after);
   }
   template <class Observer>
   static bool sample_of(void* o, Scalar t, const State& x, const Mode& mode) {

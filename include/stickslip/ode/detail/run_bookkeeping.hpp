@@ -42,16 +42,6 @@ Result finish_run(Result& r, Status s, Scalar t, const State& x, const Mode& m,
   return std::move(r);
 }
 
-/// observer.on_event(record, x_after) when the observer has it, else on_event(record).
-template <class Observer, class Scalar, class Mode, class State>
-void notify_event(Observer& obs, const EventRecord<Scalar, Mode>& record, const State& x_after) {
-  if constexpr (has_on_event_with_state<Observer, EventRecord<Scalar, Mode>, State>::value) {
-    obs.on_event(record, x_after);
-  } else {
-    obs.on_event(record);
-  }
-}
-
 /// The Zeno guard of StepperOptions: more than zeno_max_immediate_events consecutive immediate
 /// events, or more than zeno_max_events events inside a window of zeno_window.
 template <class Scalar>
