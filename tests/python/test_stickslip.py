@@ -8,6 +8,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -78,6 +79,39 @@ def test_blade_scene_equals_the_cpp_example(example_run):
     assert s["stats"]["events"] == run.stats.events
     assert s["stats"]["rhs_evaluations"] == run.stats.rhs_evaluations
     close_to_printed(run.energy.residual, s["energy_audit_residual_J"])
+
+
+def test_python_sweep_rows_equal_the_cpp_sweep(tmp_path):
+    """examples/python/sweep.py's rows against blade_sweep_mpi's (serial backend) at the same
+    preloads: E, the regime and its inputs, the tip maximum and the work counters."""
+    exe = os.environ.get("STICKSLIP_BLADE_SWEEP")
+    if not exe or not os.path.exists(exe):
+        pytest.skip("blade_sweep_mpi is not built (STICKSLIP_MPI or STICKSLIP_BUILD_EXAMPLES OFF)")
+    import sweep
+    preloads = [1.5, 2.7, 26.0]  # left platform, stick-slip, stick
+    subprocess.run([exe, "--backend", "serial", "--sweep-preloads", ",".join(map(str, preloads)), "--duration",
+                    "0.6", "--out", str(tmp_path)], check=True, stdout=subprocess.DEVNULL)
+    cpp = read_csv(tmp_path / "sweep.csv")
+    for k, p in enumerate(preloads):
+        row = sweep.sweep_point(p, 0.6)
+        assert row["regime"] == cpp["regime"][k]
+        for name in ("stick_fraction_1", "stick_fraction_2", "tip_max_m"):
+            close_to_printed(row[name], float(cpp[name][k]))
+        # E over [0, 0.1] s: also for 1.5 N, which leaves the platform after t2.
+        close_to_printed(row["energy_density_m2"], float(cpp["energy_density_m2"][k]))
+        assert row["status"] == {"success": "Success", "stopped_by_system": "StoppedBySystem"}[cpp["status"][k]]
+        assert row["rhs_evaluations"] == int(cpp["rhs_evaluations"][k])
+        assert row["events"] == int(cpp["events"][k])
+
+
+def test_sweep_script_writes_its_rows_and_plot(tmp_path):
+    script = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "python", "sweep.py")
+    subprocess.run([sys.executable, script, "--lo", "2", "--hi", "20", "--count", "2", "--duration", "0.2",
+                    "--threads", "2", "--out", str(tmp_path)], check=True, stdout=subprocess.DEVNULL,
+                   env=dict(os.environ))
+    rows = read_csv(tmp_path / "sweep_python.csv")
+    close_to_printed(rows["preload_N"].astype(float), [2.0, 20.0])
+    assert (tmp_path / "sweep_python.png").stat().st_size > 10000
 
 
 def cantilever(loads_at=0.1, modes=3):
