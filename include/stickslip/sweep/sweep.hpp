@@ -30,7 +30,8 @@ struct SweepOutcome {
 /// The work of a sweep: row text of item k (0 <= k < count). Throwing marks the item failed.
 using SweepItem = std::function<std::string(std::size_t)>;
 
-/// Progress report after each finished item: (items done, count, the item, its outcome).
+/// Progress report after each finished item: (items done, count, the item, its outcome). It must
+/// not throw (it runs on the worker threads, or on MPI rank 0 while the other ranks wait).
 using SweepProgress = std::function<void(std::size_t, std::size_t, std::size_t, const SweepOutcome&)>;
 
 /// Runs item k and catches what it throws: the one place where an item's failure becomes a row.
