@@ -191,6 +191,23 @@ def test_damper_statistics_agree_with_the_sampled_contact_states():
     assert abs(b.residual) < 1e-4 * max(abs(b.external_work), b.friction_dissipation)
 
 
+def test_at_rest_the_normal_force_is_the_preload_and_friction_vanishes():
+    # From rest at t = 0 the load sin(0) = 0 and every velocity vanish, so nothing accelerates:
+    # y'' = 0 gives N = N0 - s m y'' = N0 (paper eqs 23-24), and with no spring stretch the stuck
+    # damper needs no friction, f = 0 (to the round-off of the coupled solve, 1e-12 N0).
+    params = blade.BladeParameters(preload=5.0)
+    sys = blade.make_blade_scene(params).system
+    ok, mode, x = sys.make_consistent(sys.requested_mode(), 0.0, sys.initial_state())
+    assert ok and mode == [ss.ContactState.Stick] * 2
+    e = sys.evaluate(mode, 0.0, x)
+    np.testing.assert_allclose(e["N"], [5.0, 5.0], rtol=1e-12)
+    np.testing.assert_allclose(e["f"], [0.0, 0.0], atol=1e-12 * 5.0)
+    np.testing.assert_allclose(e["qdd"], 0.0, atol=1e-12)
+    assert sys.mechanical_energy(mode, 0.0, x) == pytest.approx(0.0, abs=1e-15)
+    with pytest.raises(ValueError, match="evaluate"):
+        sys.evaluate(mode[:1], 0.0, x)
+
+
 def test_event_log_counts_every_switched_damper():
     scene = blade.make_blade_scene(blade.BladeParameters(preload=2.0))
     run = ss.simulate(scene.system, 0.5, blade.run_options(sample_interval=1e-3))
@@ -217,6 +234,14 @@ def test_trade_study_measures_rk4s_fourth_order():
     assert study.validation.output_error_max < 0.1 * fine.output_error_max
     text = ss.trade_csv([study.reference] + list(study.rows))
     assert text.splitlines()[0].startswith("name,status,message") and len(text.splitlines()) == 4
+    # The same study with the output as a Python callable f(t, x) (the tip from the basis'
+    # shape row): the same errors up to the round-off of numpy's dot product (1e-9 relative of
+    # errors that are themselves >= 1e-7).
+    shape = setup().point_shape(1, params.L1, ss.LoadDirection.GlobalX)
+    again = ss.trade_study(reference, variants, t_end=0.2, output=lambda t, x: float(shape @ x[:len(shape)]),
+                           output_interval=1e-3, repeats=1)
+    for a, b in zip(again.rows, study.rows):
+        assert a.output_error_max == pytest.approx(b.output_error_max, rel=1e-9)
 
 
 def test_trade_study_reports_a_failing_setup_as_a_row():
