@@ -6,6 +6,7 @@
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
+#include "blade_sweep.hpp"
 
 #include <stickslip/stickslip.hpp>
 #include <unsupported/Eigen/FFT>
@@ -92,19 +93,11 @@ Usage: blade_damper [options]
   --help                 this text
 )";
 
-std::vector<double> parse_list(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) v.push_back(std::stod(item));
-  return v;
-}
+using blade::parse_list;
 
 Cli parse(int argc, char** argv) {
   Cli c;
-  c.settings.run.stepper.rtol = 1e-7;
-  c.settings.run.stepper.atol = 1e-10;
-  c.settings.run.stepper.event_time_tolerance = 1e-12;
+  c.settings = blade::default_settings();
   auto need = [&](int& i) -> std::string {
     if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
     return argv[++i];
@@ -122,10 +115,7 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--preloads") {
       for (double p : parse_list(need(i))) c.preloads.push_back(p);
     } else if (a == "--sweep") {
-      const std::string s = need(i);
-      if (std::sscanf(s.c_str(), "%lf:%lf:%d", &c.sweep_lo, &c.sweep_hi, &c.sweep_count) != 3 ||
-          c.sweep_count < 2 || !(c.sweep_hi > c.sweep_lo) || !(c.sweep_lo > 0))
-        throw std::invalid_argument("--sweep expects lo:hi:count with 0 < lo < hi and count >= 2");
+      blade::parse_sweep_range(need(i), c.sweep_lo, c.sweep_hi, c.sweep_count);
       c.sweep = true;
     } else if (a == "--sweep-linear") {
       c.sweep_log = false;
@@ -187,13 +177,8 @@ Cli parse(int argc, char** argv) {
   return c;
 }
 
-std::string fmt(double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.10g", v);
-  return b;
-}
-/// A JSON number (null when not finite, e.g. E of a run that stopped before its window).
-std::string jnum(double v) { return std::isfinite(v) ? fmt(v) : "null"; }
+using blade::fmt;
+using blade::jnum;
 std::string tag(double preload) {
   char b[64];
   std::snprintf(b, sizeof b, "N0_%g", preload);
@@ -335,13 +320,7 @@ blade::BladeParameters params_at(const Cli& c, double preload) {
 
 /// The run settings for this duration: the last second recorded, E over the paper's window.
 blade::RunSettings settings_for(const Cli& c, double duration) {
-  blade::RunSettings s = c.settings;
-  s.duration = duration;
-  s.record_window = std::min(1.0, duration);
-  s.energy_t1 = 19.0;
-  s.energy_t2 = 19.5;
-  s.fit_energy_window();
-  return s;
+  return blade::settings_for_duration(c.settings, duration);
 }
 
 blade::RunRecord run_preload(const Cli& c, double preload, double duration, Frequencies* fr_out) {
@@ -385,9 +364,9 @@ std::vector<blade::RunRecord> run_parallel(const Cli& c, const std::vector<doubl
 /// re-run with full records into out/regime_<name>/; prints the choice and why, and writes the
 /// representatives' entries of sweep.json to `j`.
 void run_representatives(const Cli& c, const fs::path& out, const std::vector<double>& preloads,
-                         const std::vector<blade::RunRecord>& results, double duration, std::ostream& j) {
+                         const std::vector<blade::SweepPoint>& points, double duration, std::ostream& j) {
   std::vector<std::optional<blade::Regime>> regimes;
-  for (const auto& r : results) regimes.push_back(r.common);
+  for (const auto& p : points) regimes.push_back(p.common);
   const std::vector<blade::Representative> chosen = blade::choose_representatives(preloads, regimes);
   std::printf("regime rule: %s\nrepresentatives: %s\n", blade::regime_rule_text(),
               blade::representative_rule_text());
@@ -494,54 +473,19 @@ int main(int argc, char** argv) {
 
     if (c.sweep) {
       const double duration = c.sweep_duration > 0 ? c.sweep_duration : c.settings.duration;
-      std::vector<double> preloads(static_cast<std::size_t>(c.sweep_count));
-      for (int k = 0; k < c.sweep_count; ++k) {
-        const double s = double(k) / double(c.sweep_count - 1);
-        preloads[static_cast<std::size_t>(k)] =
-            c.sweep_log ? c.sweep_lo * std::pow(c.sweep_hi / c.sweep_lo, s) : c.sweep_lo + (c.sweep_hi - c.sweep_lo) * s;
-      }
-      std::vector<blade::RunRecord> results = run_parallel(c, preloads, duration, false, "sweep");
-      std::size_t best = 0;
-      for (std::size_t k = 0; k < results.size(); ++k)
-        if (std::isfinite(results[k].energy_density) &&
-            (!std::isfinite(results[best].energy_density) || results[k].energy_density < results[best].energy_density))
-          best = k;
-      std::ofstream o(out / "sweep.csv");
-      o << "preload_N,energy_density_m2,regime,stick_fraction_1,stick_fraction_2,transitions_per_period_1,"
-           "transitions_per_period_2,tip_max_m,status,cpu_seconds,rhs_evaluations,events\n";
-      for (const auto& r : results)
-        o << fmt(r.preload) << ',' << fmt(r.energy_density) << ',' << r.overall_regime << ','
-          << fmt(r.regime[0].stick_fraction) << ',' << fmt(r.regime[1].stick_fraction) << ','
-          << fmt(r.regime[0].transitions_per_period) << ',' << fmt(r.regime[1].transitions_per_period) << ','
-          << fmt(r.tip_max) << ',' << to_string(r.status) << ',' << fmt(r.cpu_seconds) << ','
-          << r.stats.rhs_evaluations << ',' << r.total_events << '\n';
-      // Regime map: contiguous preload ranges with the same regime.
+      // The library's sweep runner on --threads threads (blade_sweep.hpp; blade_sweep_mpi runs
+      // the same items over MPI ranks and writes the same sweep.csv).
+      const std::vector<double> preloads = blade::sweep_preloads(c.sweep_lo, c.sweep_hi, c.sweep_count, c.sweep_log);
+      const blade::RunSettings settings = settings_for(c, duration);
+      const auto outcomes = run_sweep_threads(
+          preloads.size(), [&](std::size_t k) { return blade::sweep_item(c.params, settings, preloads[k]); },
+          static_cast<unsigned>(std::max(0, c.threads)),
+          [&](std::size_t done, std::size_t n, std::size_t k, const SweepOutcome& o) {
+            blade::print_sweep_progress("sweep", done, n, preloads[k], o);
+          });
       std::ofstream j(out / "sweep.json");
-      j << "{\n  \"duration_s\": " << jnum(duration) << ",\n  \"optimum\": {\"preload_N\": "
-        << jnum(results[best].preload) << ", \"energy_density_m2\": " << jnum(results[best].energy_density)
-        << ", \"regime\": \"" << results[best].overall_regime << "\"},\n  \"regime_map\": [";
-      std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\nregime map:\n", results[best].preload,
-                  results[best].energy_density, results[best].overall_regime.c_str());
-      std::size_t start = 0;
-      bool first = true;
-      for (std::size_t k = 1; k <= results.size(); ++k) {
-        if (k == results.size() || results[k].overall_regime != results[start].overall_regime) {
-          j << (first ? "" : ", ") << "{\"regime\": \"" << results[start].overall_regime
-            << "\", \"from_N\": " << jnum(results[start].preload) << ", \"to_N\": " << jnum(results[k - 1].preload) << "}";
-          std::printf("  %6.2f .. %6.2f N: %s\n", results[start].preload, results[k - 1].preload,
-                      results[start].overall_regime.c_str());
-          first = false;
-          start = k;
-        }
-      }
-      j << "],\n  \"regimes\": [";
-      for (std::size_t k = 0; k < blade::kRegimes.size(); ++k)
-        j << (k ? ", " : "") << "{\"name\": \"" << blade::to_string(blade::kRegimes[k]) << "\", \"folder\": \""
-          << blade::regime_folder(blade::kRegimes[k]) << "\"}";
-      j << "],\n  \"regime_rule\": \"" << blade::regime_rule_text() << "\",\n  \"representative_rule\": \""
-        << blade::representative_rule_text() << "\",\n  \"representatives\": [";
-
-      run_representatives(c, out, preloads, results, duration, j);
+      blade::write_sweep_files(c.out, duration, preloads, outcomes, j);
+      run_representatives(c, out, preloads, blade::sweep_points(preloads, outcomes), duration, j);
       j << "]\n}\n";
     }
 

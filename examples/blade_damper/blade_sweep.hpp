@@ -1,0 +1,192 @@
+#pragma once
+/// \file blade_sweep.hpp
+/// \brief The preload sweep of the blade example as work items of the library's sweep runner
+/// (stickslip/sweep.hpp): one row of sweep.csv per preload, and sweep.csv / the head of
+/// sweep.json from the rows, so that blade_damper (threads) and blade_sweep_mpi (MPI ranks)
+/// write the same files.
+
+#include "blade_regime.hpp"
+#include "blade_run.hpp"
+#include "blade_scene.hpp"
+
+#include <stickslip/sweep.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace blade {
+
+/// A number as the example writes it (%.10g).
+inline std::string fmt(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+/// A JSON number (null when not finite, e.g. E of a run that stopped before its window).
+inline std::string jnum(double v) { return std::isfinite(v) ? fmt(v) : "null"; }
+
+/// The example's run settings: DOPRI rtol 1e-7, atol 1e-10, events located to 1e-12 s.
+inline RunSettings default_settings() {
+  RunSettings s;
+  s.run.stepper.rtol = 1e-7;
+  s.run.stepper.atol = 1e-10;
+  s.run.stepper.event_time_tolerance = 1e-12;
+  return s;
+}
+
+/// `s` for a run of this duration: the last second recorded, E over the paper's window
+/// [19, 19.5] s (or [T - 1, T - 0.5] for shorter runs).
+inline RunSettings settings_for_duration(RunSettings s, double duration) {
+  s.duration = duration;
+  s.record_window = std::min(1.0, duration);
+  s.energy_t1 = 19.0;
+  s.energy_t2 = 19.5;
+  s.fit_energy_window();
+  return s;
+}
+
+/// "a,b,c" as numbers (std::stod each).
+inline std::vector<double> parse_list(const std::string& s) {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');) v.push_back(std::stod(item));
+  return v;
+}
+
+/// --sweep's "lo:hi:count" into lo, hi, count.
+/// Throws std::invalid_argument unless 0 < lo < hi and count >= 2.
+inline void parse_sweep_range(const std::string& s, double& lo, double& hi, int& count) {
+  if (std::sscanf(s.c_str(), "%lf:%lf:%d", &lo, &hi, &count) != 3 || count < 2 || !(hi > lo) || !(lo > 0))
+    throw std::invalid_argument("--sweep expects lo:hi:count with 0 < lo < hi and count >= 2");
+}
+
+/// count preloads from lo to hi, log-spaced (or linearly).
+inline std::vector<double> sweep_preloads(double lo, double hi, int count, bool log_spaced) {
+  std::vector<double> preloads(static_cast<std::size_t>(count));
+  for (int k = 0; k < count; ++k) {
+    const double s = double(k) / double(count - 1);
+    preloads[static_cast<std::size_t>(k)] = log_spaced ? lo * std::pow(hi / lo, s) : lo + (hi - lo) * s;
+  }
+  return preloads;
+}
+
+/// Key column of sweep.csv (written for failed items too).
+inline const char* kSweepKeyHeader = "preload_N";
+/// The other columns of sweep.csv (then `error`, stickslip::write_sweep_csv).
+inline const char* kSweepHeader =
+    "energy_density_m2,regime,stick_fraction_1,stick_fraction_2,transitions_per_period_1,"
+    "transitions_per_period_2,tip_max_m,status,cpu_seconds,rhs_evaluations,events";
+
+/// The row of one run after its preload (kSweepHeader's columns).
+inline std::string sweep_row(const RunRecord& r) {
+  std::ostringstream o;
+  o << fmt(r.energy_density) << ',' << r.overall_regime << ',' << fmt(r.regime[0].stick_fraction) << ','
+    << fmt(r.regime[1].stick_fraction) << ',' << fmt(r.regime[0].transitions_per_period) << ','
+    << fmt(r.regime[1].transitions_per_period) << ',' << fmt(r.tip_max) << ',' << stickslip::to_string(r.status)
+    << ',' << fmt(r.cpu_seconds) << ',' << r.stats.rhs_evaluations << ',' << r.total_events;
+  return o.str();
+}
+
+/// The sweep's work item: the scene of `base` at this preload run with `settings`, as a row.
+inline std::string sweep_item(const BladeParameters& base, const RunSettings& settings, double preload) {
+  BladeParameters p = base;
+  p.preload = preload;
+  BladeScene scene = make_blade_scene(p);
+  return sweep_row(run_scene(scene, settings));
+}
+
+/// Cell `index` (0-based) of a row of kSweepHeader's columns.
+inline std::string row_cell(const std::string& row, int index) {
+  std::istringstream cells(row);
+  std::string cell;
+  for (int k = 0; k <= index; ++k) std::getline(cells, cell, ',');
+  return cell;
+}
+
+/// What the regime map and the representatives need of one sweep row.
+struct SweepPoint {
+  double preload = 0;
+  double energy_density = std::numeric_limits<double>::quiet_NaN();  ///< as written (10 digits)
+  std::string regime;           ///< the row's regime text ("error" for a failed item)
+  std::optional<Regime> common;  ///< the regime, when it is one of kRegimes
+};
+
+/// Sweep points from the rows (their first two cells: E and the regime).
+inline std::vector<SweepPoint> sweep_points(const std::vector<double>& preloads,
+                                            const std::vector<stickslip::SweepOutcome>& outcomes) {
+  std::vector<SweepPoint> points(preloads.size());
+  for (std::size_t k = 0; k < preloads.size(); ++k) {
+    SweepPoint& p = points[k];
+    p.preload = preloads[k];
+    if (!outcomes[k].ok) {
+      p.regime = "error";
+      continue;
+    }
+    p.energy_density = std::strtod(row_cell(outcomes[k].row, 0).c_str(), nullptr);  // "nan" parses as NaN
+    p.regime = row_cell(outcomes[k].row, 1);
+    for (Regime r : kRegimes)
+      if (p.regime == to_string(r)) p.common = r;
+  }
+  return points;
+}
+
+/// Writes OUT/sweep.csv and the head of sweep.json (duration, optimum, regime map, the regime
+/// names and rules) up to the open `"representatives": [`, printing the optimum and the map.
+inline void write_sweep_files(const std::string& out, double duration, const std::vector<double>& preloads,
+                              const std::vector<stickslip::SweepOutcome>& outcomes, std::ostream& j) {
+  {
+    std::ofstream csv(out + "/sweep.csv");
+    stickslip::write_sweep_csv(csv, kSweepKeyHeader, [&](std::size_t k) { return fmt(preloads[k]); }, kSweepHeader,
+                               outcomes);
+  }
+  const std::vector<SweepPoint> points = sweep_points(preloads, outcomes);
+  std::size_t best = 0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (std::isfinite(points[k].energy_density) &&
+        (!std::isfinite(points[best].energy_density) || points[k].energy_density < points[best].energy_density))
+      best = k;
+  j << "{\n  \"duration_s\": " << jnum(duration) << ",\n  \"optimum\": {\"preload_N\": " << jnum(points[best].preload)
+    << ", \"energy_density_m2\": " << jnum(points[best].energy_density) << ", \"regime\": \"" << points[best].regime
+    << "\"},\n  \"regime_map\": [";
+  std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\nregime map:\n", points[best].preload,
+              points[best].energy_density, points[best].regime.c_str());
+  // Regime map: contiguous preload ranges with the same regime.
+  std::size_t start = 0;
+  for (std::size_t k = 1; k <= points.size(); ++k) {
+    if (k == points.size() || points[k].regime != points[start].regime) {
+      j << (start ? ", " : "") << "{\"regime\": \"" << points[start].regime << "\", \"from_N\": "
+        << jnum(points[start].preload) << ", \"to_N\": " << jnum(points[k - 1].preload) << "}";
+      std::printf("  %6.2f .. %6.2f N: %s\n", points[start].preload, points[k - 1].preload,
+                  points[start].regime.c_str());
+      start = k;
+    }
+  }
+  j << "],\n  \"regimes\": [";
+  for (std::size_t k = 0; k < kRegimes.size(); ++k)
+    j << (k ? ", " : "") << "{\"name\": \"" << to_string(kRegimes[k]) << "\", \"folder\": \""
+      << regime_folder(kRegimes[k]) << "\"}";
+  j << "],\n  \"regime_rule\": \"" << regime_rule_text() << "\",\n  \"representative_rule\": \""
+    << representative_rule_text() << "\",\n  \"representatives\": [";
+}
+
+/// The sweep's progress line, "\r<what>: k/n preloads done (last N0 = ... N: <regime>)".
+inline void print_sweep_progress(const char* what, std::size_t done, std::size_t count, double preload,
+                                 const stickslip::SweepOutcome& o) {
+  const std::string regime = o.ok ? row_cell(o.row, 1) : "error: " + o.error;
+  std::printf("\r%s: %zu/%zu preloads done (last N0 = %.2f N: %s)        ", what, done, count, preload,
+              regime.c_str());
+  if (done == count) std::printf("\n");
+  std::fflush(stdout);
+}
+
+}  // namespace blade

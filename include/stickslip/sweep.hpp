@@ -1,0 +1,6 @@
+#pragma once
+/// \file sweep.hpp
+/// \brief Sweeps of independent runs: serial and thread backends (the MPI backend,
+/// stickslip/sweep/sweep_mpi.hpp, is included on its own since it needs <mpi.h>).
+
+#include "stickslip/sweep/sweep.hpp"

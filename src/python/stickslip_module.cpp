@@ -1,0 +1,667 @@
+// The Python module `stickslip` (docs/python.md): frames, modes, dampers and loads, simulate()
+// with any integrator returning histories as numpy arrays, events, the energy audit, per-damper
+// statistics and trade_study(). Exceptions keep their messages: std::invalid_argument becomes
+// ValueError, other std::exception types their pybind11 counterparts (RuntimeError, ...).
+#include <stickslip/stickslip.hpp>
+
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace py = pybind11;
+
+namespace pybind11::detail {
+/// NodeId and MemberId are Python ints.
+template <class Tag>
+struct type_caster<stickslip::detail::TaggedIndex<Tag>> {
+  PYBIND11_TYPE_CASTER(stickslip::detail::TaggedIndex<Tag>, const_name("int"));
+  bool load(handle src, bool convert) {
+    make_caster<Eigen::Index> index;
+    if (!index.load(src, convert)) return false;
+    value = cast_op<Eigen::Index>(index);
+    return true;
+  }
+  static handle cast(stickslip::detail::TaggedIndex<Tag> id, return_value_policy, handle) {
+    return PyLong_FromLongLong(static_cast<long long>(id.value));
+  }
+};
+}  // namespace pybind11::detail
+
+namespace {
+
+using namespace stickslip;
+using Index = Eigen::Index;
+using System = FrictionDampedSystem<double>;
+using State = System::State;
+using Mode = System::Mode;
+using Law = FrictionLawVariant<double>;
+
+/// A DamperStates as a Python list of ContactState.
+std::vector<ContactState> to_list(const Mode& mode) {
+  std::vector<ContactState> v(static_cast<std::size_t>(mode.size()));
+  for (Index i = 0; i < mode.size(); ++i) v[static_cast<std::size_t>(i)] = mode[i];
+  return v;
+}
+
+/// A Python list of ContactState as a DamperStates.
+Mode to_mode(const std::vector<ContactState>& states) {
+  Mode mode(static_cast<Index>(states.size()));
+  for (std::size_t i = 0; i < states.size(); ++i) mode[static_cast<Index>(i)] = states[i];
+  return mode;
+}
+
+/// A Python CoulombLaw, StribeckLaw or RegularisedLaw as the damper's law variant.
+Law to_law(const py::handle& law) {
+  if (py::isinstance<CoulombLaw<double>>(law)) return law.cast<CoulombLaw<double>>();
+  if (py::isinstance<StribeckLaw<double>>(law)) return law.cast<StribeckLaw<double>>();
+  if (py::isinstance<RegularisedLaw<double>>(law)) return law.cast<RegularisedLaw<double>>();
+  throw std::invalid_argument("PointDamper: law must be a CoulombLaw, StribeckLaw or RegularisedLaw");
+}
+
+/// A point of the frame whose displacement simulate() records at every sample:
+/// point_shape(member, coordinate, direction)^T q.
+struct Probe {
+  MemberId member = 0;
+  double coordinate = 0;
+  LoadDirection direction = LoadDirection::GlobalX;
+};
+
+/// One transition seen by simulate()'s observer (the stepper's record: every damper's state).
+struct Transition {
+  double t = 0;
+  std::vector<ContactState> from, to;
+};
+
+/// What simulate() returns: the result, the sampled histories and the audit.
+struct Run {
+  Status status = Status::Success;
+  std::string message;
+  double t = 0;
+  State x;
+  std::vector<ContactState> mode;
+  StepperStats stats;
+  double E0 = 0;
+  std::optional<System::EnergyBalance> energy;
+  std::vector<double> sample_t;
+  std::vector<State> samples;  // empty unless record_states
+  std::vector<std::vector<ContactState>> sample_modes;
+  std::vector<std::vector<double>> probe_values;  // per sample
+  std::vector<double> force_t;                     // samples with t >= evaluate_from
+  std::vector<System::Vector> N, f, V, y, X;
+  std::vector<Transition> transitions;
+  std::vector<DamperWindowStatistics<double>> statistics;
+};
+
+/// Rows of `rows` (each of `cols` values) as a 2-D numpy array.
+template <class T, class Rows, class Get>
+py::array_t<T> stack(const Rows& rows, Index cols, Get get) {
+  py::array_t<T> a({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(cols)});
+  auto m = a.template mutable_unchecked<2>();
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (Index c = 0; c < cols; ++c) m(static_cast<py::ssize_t>(r), static_cast<py::ssize_t>(c)) = get(rows[r], c);
+  return a;
+}
+
+/// simulate()'s observer: samples (t, x, mode, probes, forces after evaluate_from), transitions,
+/// and DamperStatistics when a window is given.
+class Recorder {
+ public:
+  Recorder(System& system, Run& run, std::vector<System::Vector> probe_shapes, bool record_states,
+           double evaluate_from, std::optional<DamperStatistics<System>>& statistics)
+      : system_(system), run_(run), shapes_(std::move(probe_shapes)), record_states_(record_states),
+        evaluate_from_(evaluate_from), statistics_(statistics) {}
+
+  bool on_step(double t, const State& x, const Mode& mode) {
+    if (statistics_) statistics_->on_step(t, x, mode);
+    return true;
+  }
+  void on_event(const EventRecord<double, Mode>& record, const State& x_after) {
+    run_.transitions.push_back(Transition{record.t, to_list(record.from), to_list(record.to)});
+    if (statistics_) statistics_->on_event(record, x_after);
+  }
+  bool on_sample(double t, const State& x, const Mode& mode) {
+    run_.sample_t.push_back(t);
+    if (record_states_) run_.samples.push_back(x);
+    run_.sample_modes.push_back(to_list(mode));
+    std::vector<double> p(shapes_.size());
+    for (std::size_t k = 0; k < shapes_.size(); ++k) p[k] = shapes_[k].dot(x.head(system_.num_modes()));
+    run_.probe_values.push_back(std::move(p));
+    if (t >= evaluate_from_ - 1e-12) {  // the tolerance of examples/blade_damper's record window
+      const System::Evaluation& e = system_.evaluate(mode, t, x);
+      run_.force_t.push_back(t);
+      run_.N.push_back(e.N);
+      run_.f.push_back(e.f);
+      run_.V.push_back(e.V);
+      run_.y.push_back(e.y);
+      run_.X.push_back(e.X);
+    }
+    return true;
+  }
+
+ private:
+  System& system_;
+  Run& run_;
+  std::vector<System::Vector> shapes_;
+  bool record_states_;
+  double evaluate_from_;
+  std::optional<DamperStatistics<System>>& statistics_;
+};
+
+/// simulate() from (mode, t0, x0) - by default the system's initial state made consistent - to
+/// t_end, recording as asked. The GIL is released while the stepper runs.
+Run run_simulation(System& system, double t_end, const RunOptions<double>& options, double t0,
+                   std::optional<State> x0, std::optional<std::vector<ContactState>> mode0,
+                   const std::vector<Probe>& probes, bool record_states, double evaluate_from,
+                   std::optional<StatisticsWindow<double>> window, bool consistent) {
+  Run run;
+  State x = x0 ? *x0 : system.initial_state();
+  Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
+  system.validate_state(mode, x, "simulate");
+  std::vector<System::Vector> shapes;
+  for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
+  {
+    py::gil_scoped_release release;
+    if (consistent && !system.make_consistent(mode, t0, x)) {
+      run.status = Status::StoppedBySystem;
+      run.message = "inconsistent or lifted-off initial contact state at t0";
+      run.t = t0;
+      run.x = x;
+      run.mode = to_list(mode);
+      return run;
+    }
+    run.E0 = system.options().energy_audit ? system.mechanical_energy(mode, t0, x) : 0.0;
+    std::optional<DamperStatistics<System>> statistics;
+    if (window) statistics.emplace(system, mode, t0, x, *window);
+    Recorder recorder(system, run, std::move(shapes), record_states, evaluate_from, statistics);
+    auto result = simulate(system, mode, t0, x, t_end, options, recorder);
+    run.status = result.status;
+    run.message = result.message;
+    run.t = result.t;
+    run.x = result.x;
+    run.mode = to_list(result.mode);
+    run.stats = result.stats;
+    if (system.options().energy_audit) run.energy = system.energy_balance(result.mode, result.t, result.x, run.E0);
+    if (statistics)
+      for (Index i = 0; i < statistics->num_dampers(); ++i) run.statistics.push_back(statistics->statistics(i));
+  }
+  return run;
+}
+
+/// RunOptions from keyword arguments (the StepperOptions field names and the integrator by name).
+RunOptions<double> make_run_options(const std::string& integrator, const py::kwargs& kwargs) {
+  RunOptions<double> o;
+  o.integrator = parse_integrator(integrator);
+  auto& s = o.stepper;
+  for (const auto& item : kwargs) {
+    const std::string key = py::cast<std::string>(item.first);
+    const py::handle v = item.second;
+    if (key == "fixed_step") s.fixed_step = v.cast<double>();
+    else if (key == "initial_step") s.initial_step = v.cast<double>();
+    else if (key == "rtol") s.rtol = v.cast<double>();
+    else if (key == "atol") s.atol = v.cast<double>();
+    else if (key == "safety") s.safety = v.cast<double>();
+    else if (key == "min_step") s.min_step = v.cast<double>();
+    else if (key == "max_step") s.max_step = v.cast<double>();
+    else if (key == "max_steps") s.max_steps = v.cast<long>();
+    else if (key == "event_location") s.event_location = v.cast<EventLocation>();
+    else if (key == "event_time_tolerance") s.event_time_tolerance = v.cast<double>();
+    else if (key == "guard_zero_tolerance") s.guard_zero_tolerance = v.cast<double>();
+    else if (key == "zeno_max_events") s.zeno_max_events = v.cast<long>();
+    else if (key == "zeno_window") s.zeno_window = v.cast<double>();
+    else if (key == "output_interval") s.output_interval = v.cast<double>();
+    else if (key == "check_stability_limit") o.check_stability_limit = v.cast<bool>();
+    else throw std::invalid_argument("RunOptions: unknown option " + key);
+  }
+  return o;
+}
+
+/// trade_study()'s compared output: a Probe (point_shape^T q) or a Python callable f(t, x).
+std::function<double(const System&, double, const State&)> trade_output(const py::object& output) {
+  if (py::isinstance<Probe>(output)) {
+    const Probe p = output.cast<Probe>();
+    return [p](const System& sys, double, const State& x) {
+      return sys.point_shape(p.member, p.coordinate, p.direction).dot(x.head(sys.num_modes()));
+    };
+  }
+  if (!PyCallable_Check(output.ptr()))
+    throw std::invalid_argument("trade_study: output must be a Probe or a callable f(t, x)");
+  return [output](const System&, double t, const State& x) { return output(t, x).cast<double>(); };
+}
+
+void bind_frame(py::module_& m) {
+  py::class_<SectionProperties<double>>(m, "SectionProperties", "Beam section: E [Pa], rho [kg/m^3], A [m^2], I [m^4].")
+      .def(py::init([](double E, double rho, double A, double I) { return SectionProperties<double>{E, rho, A, I}; }),
+           py::arg("E"), py::arg("rho"), py::arg("A"), py::arg("I"))
+      .def_readwrite("E", &SectionProperties<double>::E)
+      .def_readwrite("rho", &SectionProperties<double>::rho)
+      .def_readwrite("A", &SectionProperties<double>::A)
+      .def_readwrite("I", &SectionProperties<double>::I);
+  py::enum_<Dof>(m, "Dof").value("X", Dof::X).value("Y", Dof::Y).value("Rz", Dof::Rz);
+  py::enum_<MassType>(m, "MassType").value("Consistent", MassType::Consistent).value("Lumped", MassType::Lumped);
+  using Frame = FrameModel<double>;
+  py::class_<Frame>(m, "FrameModel", "A plane frame of Euler-Bernoulli members (docs/beam.md).")
+      .def(py::init<>())
+      .def("add_node", &Frame::add_node, py::arg("x"), py::arg("y"), "Adds a node at (x, y) [m]; returns its id.")
+      .def("add_member", py::overload_cast<NodeId, NodeId, const Frame::Section&, Index>(&Frame::add_member),
+           py::arg("node_a"), py::arg("node_b"), py::arg("section"), py::arg("elements"),
+           "Adds a member of `elements` equal elements; returns its id.")
+      .def("add_member",
+           py::overload_cast<NodeId, NodeId, const Frame::Section&, std::vector<double>>(&Frame::add_member),
+           py::arg("node_a"), py::arg("node_b"), py::arg("section"), py::arg("stations"))
+      .def("clamp", &Frame::clamp, py::arg("node"))
+      .def("pin", &Frame::pin, py::arg("node"))
+      .def("fix", &Frame::fix, py::arg("node"), py::arg("dof"))
+      .def("add_point_mass", &Frame::add_point_mass, py::arg("node"), py::arg("m"))
+      .def("add_rotary_inertia", &Frame::add_rotary_inertia, py::arg("node"), py::arg("J"))
+      .def("add_spring", &Frame::add_spring, py::arg("node"), py::arg("dof"), py::arg("k"))
+      .def("member_nodes", [](const Frame& f, MemberId id) { return f.member(id).nodes; }, py::arg("member"),
+           "Node ids along the member, a ... b.")
+      .def("member_length", [](const Frame& f, MemberId id) { return f.member(id).length; }, py::arg("member"))
+      .def("node_position", [](const Frame& f, NodeId n) { return f.node_position(n); }, py::arg("node"));
+
+  py::class_<ModalBasis<double>>(m, "ModalBasis", "Mass-normalised modes of a frame (docs/modal.md).")
+      .def_property_readonly("omega", &ModalBasis<double>::omega, "natural frequencies [rad/s], ascending")
+      .def_property_readonly("frequencies_hz", &ModalBasis<double>::frequencies_hz)
+      .def_property_readonly("phi", &ModalBasis<double>::phi)
+      .def_property_readonly("damping_ratios", &ModalBasis<double>::damping_ratios)
+      .def("__len__", [](const ModalBasis<double>& b) { return b.size(); })
+      .def("truncated", &ModalBasis<double>::truncated, py::arg("n"))
+      .def("with_modal_damping", &ModalBasis<double>::with_modal_damping, py::arg("ratios"))
+      .def("with_rayleigh_damping", &ModalBasis<double>::with_rayleigh_damping, py::arg("alpha"), py::arg("beta"));
+  m.def(
+      "compute_modes",
+      [](const Frame& frame, Index num_modes, double max_omega, MassType mass) {
+        ModalOptions<double> o;
+        o.num_modes = num_modes;
+        o.max_omega = max_omega;
+        return compute_modes(frame.assemble(mass), o);
+      },
+      py::arg("frame"), py::arg("num_modes") = 10, py::arg("max_omega") = std::numeric_limits<double>::infinity(),
+      py::arg("mass") = MassType::Consistent, "The lowest num_modes modes of the assembled frame.");
+}
+
+void bind_dampers(py::module_& m) {
+  py::enum_<ContactState>(m, "ContactState")
+      .value("Stick", ContactState::Stick)
+      .value("SlipPositive", ContactState::SlipPositive)
+      .value("SlipNegative", ContactState::SlipNegative)
+      .value("LiftOff", ContactState::LiftOff);
+  py::enum_<LoadDirection>(m, "LoadDirection")
+      .value("GlobalX", LoadDirection::GlobalX)
+      .value("GlobalY", LoadDirection::GlobalY)
+      .value("Axial", LoadDirection::Axial)
+      .value("Transverse", LoadDirection::Transverse)
+      .value("Moment", LoadDirection::Moment);
+  py::enum_<NormalLoad>(m, "NormalLoad").value("Constant", NormalLoad::Constant).value("Inertial", NormalLoad::Inertial);
+  py::enum_<ContactPoint>(m, "ContactPoint").value("Fixed", ContactPoint::Fixed).value("Moving", ContactPoint::Moving);
+  py::enum_<EndPolicy>(m, "EndPolicy")
+      .value("Throw", EndPolicy::Throw)
+      .value("Clamp", EndPolicy::Clamp)
+      .value("Extrapolate", EndPolicy::Extrapolate);
+  py::class_<CoulombLaw<double>>(m, "CoulombLaw", "Coulomb friction with static mu_s >= kinetic mu_k.")
+      .def(py::init<double, double>(), py::arg("mu_s"), py::arg("mu_k"));
+  py::class_<StribeckLaw<double>>(m, "StribeckLaw")
+      .def(py::init<double, double, double, double>(), py::arg("mu_s"), py::arg("mu_k"), py::arg("v_s"),
+           py::arg("exponent") = 2.0);
+  py::class_<RegularisedLaw<double>>(m, "RegularisedLaw", "tanh-regularised friction mu tanh(v / v_eps).")
+      .def(py::init([](double mu, double v_eps) { return RegularisedLaw<double>(mu, v_eps); }), py::arg("mu"),
+           py::arg("v_eps"));
+
+  using Damper = System::Damper;
+  py::class_<Damper>(m, "PointDamper", "A point-contact friction damper on a member (docs/model.md).")
+      .def(py::init([](MemberId member, double coordinate, double mass, double stiffness, double preload,
+                       const py::object& law, double share) {
+             return Damper(member, coordinate, mass, stiffness, preload, to_law(law), share);
+           }),
+           py::arg("member"),
+           py::arg("contact_coordinate"), py::arg("mass"), py::arg("stiffness"), py::arg("preload"), py::arg("law"),
+           py::arg("share") = 1.0)
+      .def_readwrite("member", &Damper::member)
+      .def_readwrite("contact_coordinate", &Damper::contact_coordinate)
+      .def_readwrite("mass", &Damper::mass)
+      .def_readwrite("stiffness", &Damper::stiffness)
+      .def_readwrite("preload", &Damper::preload)
+      .def_readwrite("share", &Damper::share)
+      .def_readwrite("side", &Damper::side)
+      .def_readwrite("initial_state", &Damper::initial_state)
+      .def_readwrite("normal_load", &Damper::normal_load)
+      .def_readwrite("contact_point", &Damper::contact_point);
+  using Load = System::Load;
+  py::class_<Load>(m, "PointLoad", "A point load F(t) = amplitude sin(omega t + phase) + offset, or time_function(t).")
+      .def(py::init([](MemberId member, double coordinate, LoadDirection direction, double amplitude, double omega,
+                       double phase, double offset) {
+             Load l = Load::harmonic(member, coordinate, direction, amplitude, omega, phase);
+             l.offset = offset;
+             return l;
+           }),
+           py::arg("member"), py::arg("coordinate"), py::arg("direction") = LoadDirection::GlobalX,
+           py::arg("amplitude") = 0.0, py::arg("omega") = 0.0, py::arg("phase") = 0.0, py::arg("offset") = 0.0)
+      .def_static("harmonic", &Load::harmonic, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
+                  py::arg("amplitude"), py::arg("omega"), py::arg("phase") = 0.0)
+      .def_readwrite("time_function", &Load::time_function, "optional F(t) (a Python callable; slower)")
+      .def("value", &Load::value, py::arg("t"));
+  using Options = ModelOptions<double>;
+  py::class_<Options>(m, "ModelOptions", "What a friction-damped scene models (docs/model.md).")
+      .def(py::init<>())
+      .def_readwrite("normal_load", &Options::normal_load)
+      .def_readwrite("moving_contact", &Options::moving_contact)
+      .def_readwrite("convective_terms", &Options::convective_terms)
+      .def_readwrite("watch_lift_off", &Options::watch_lift_off)
+      .def_readwrite("energy_audit", &Options::energy_audit)
+      .def_readwrite("end_policy", &Options::end_policy)
+      .def_readwrite("refine_stale_factorisation", &Options::refine_stale_factorisation);
+}
+
+void bind_system(py::module_& m) {
+  py::class_<System::ContactEvent>(m, "ContactEvent", "One damper's contact switch.")
+      .def_readonly("t", &System::ContactEvent::t)
+      .def_readonly("damper", &System::ContactEvent::damper)
+      .def_readonly("from_state", &System::ContactEvent::from)
+      .def_readonly("to_state", &System::ContactEvent::to);
+  py::class_<System::EnergyBalance>(m, "EnergyBalance", "E(t) - E0 = W_ext - D_visc - D_fric + W_slope + residual.")
+      .def_readonly("mechanical", &System::EnergyBalance::mechanical)
+      .def_readonly("external_work", &System::EnergyBalance::external_work)
+      .def_readonly("viscous_dissipation", &System::EnergyBalance::viscous_dissipation)
+      .def_readonly("friction_dissipation", &System::EnergyBalance::friction_dissipation)
+      .def_readonly("slope_work", &System::EnergyBalance::slope_work)
+      .def_readonly("residual", &System::EnergyBalance::residual);
+  py::enum_<System::StopReason>(m, "StopReason")
+      .value("None_", System::StopReason::None)
+      .value("LiftOff", System::StopReason::LiftOff)
+      .value("LeftMember", System::StopReason::LeftMember)
+      .value("NoConsistentState", System::StopReason::NoConsistentState);
+  py::class_<System>(m, "FrictionDampedSystem", "Frame modes + friction dampers + loads (paper eqs 26-29).")
+      .def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<System::Damper>,
+                    std::vector<System::Load>, const ModelOptions<double>&>(),
+           py::arg("frame"), py::arg("basis"), py::arg("dampers"), py::arg("loads") = std::vector<System::Load>{},
+           py::arg("options") = ModelOptions<double>{})
+      .def_property_readonly("num_modes", &System::num_modes)
+      .def_property_readonly("num_dampers", &System::num_dampers)
+      .def_property_readonly("state_size", &System::state_size)
+      .def_property_readonly("q_offset", &System::q_offset)
+      .def_property_readonly("qd_offset", &System::qd_offset)
+      .def_property_readonly("x_offset", &System::x_offset)
+      .def_property_readonly("xd_offset", &System::xd_offset)
+      .def_property_readonly("contact_offset", &System::contact_offset)
+      .def_property_readonly("energy_offset", &System::energy_offset)
+      .def_property_readonly("options", &System::options)
+      .def_property_readonly("dampers", &System::dampers)
+      .def_property_readonly("omega_squared", &System::omega_squared)
+      .def("point_shape", &System::point_shape, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
+           "Row psi with psi^T q the displacement of the point along `direction`.")
+      .def("initial_state", &System::initial_state)
+      .def("requested_mode", [](const System& s) { return to_list(s.requested_mode()); })
+      .def(
+          "make_consistent",
+          [](System& s, std::vector<ContactState> mode, double t, State x) {
+            Mode md = to_mode(mode);
+            const bool ok = s.make_consistent(md, t, x);
+            return py::make_tuple(ok, to_list(md), x);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"), "(ok, mode, x) made consistent at t.")
+      .def(
+          "evaluate",
+          [](System& s, const std::vector<ContactState>& mode, double t, const State& x) {
+            const Mode md = to_mode(mode);
+            s.validate_state(md, x, "FrictionDampedSystem.evaluate");
+            const auto& e = s.evaluate(md, t, x);
+            py::dict d;
+            d["qdd"] = e.qdd, d["N"] = e.N, d["f"] = e.f, d["V"] = e.V, d["xdd"] = e.xdd, d["X"] = e.X;
+            d["slope"] = e.slope, d["y"] = e.y;
+            return d;
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"), "Forces and kinematics of the dampers (dict of arrays).")
+      .def("events", &System::events, "Contact switches logged since construction or clear_events().")
+      .def("clear_events", &System::clear_events)
+      .def_property_readonly("stop_reason", &System::stop_reason)
+      .def_property_readonly("stop_damper", &System::stop_damper)
+      .def(
+          "mechanical_energy",
+          [](System& s, const std::vector<ContactState>& mode, double t, const State& x) {
+            const Mode md = to_mode(mode);
+            s.validate_state(md, x, "FrictionDampedSystem.mechanical_energy");
+            return s.mechanical_energy(md, t, x);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"))
+      .def(
+          "energy_balance",
+          [](System& s, const std::vector<ContactState>& mode, double t, const State& x, double E0) {
+            const Mode md = to_mode(mode);
+            s.validate_state(md, x, "FrictionDampedSystem.energy_balance");
+            return s.energy_balance(md, t, x, E0);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"), py::arg("E0"));
+}
+
+void bind_simulate(py::module_& m) {
+  py::enum_<Integrator>(m, "Integrator")
+      .value("RungeKutta4", Integrator::RungeKutta4)
+      .value("DormandPrince54", Integrator::DormandPrince54)
+      .value("Rosenbrock23", Integrator::Rosenbrock23)
+      .value("Exponential", Integrator::Exponential);
+  py::enum_<EventLocation>(m, "EventLocation")
+      .value("DenseRootFinding", EventLocation::DenseRootFinding)
+      .value("Bisection", EventLocation::Bisection);
+  py::enum_<Status>(m, "Status")
+      .value("Success", Status::Success)
+      .value("StepSizeUnderflow", Status::StepSizeUnderflow)
+      .value("MaxSteps", Status::MaxSteps)
+      .value("NonFiniteState", Status::NonFiniteState)
+      .value("ZenoGuard", Status::ZenoGuard)
+      .value("StoppedByObserver", Status::StoppedByObserver)
+      .value("StoppedBySystem", Status::StoppedBySystem);
+  m.def("status_name", [](Status s) { return std::string(to_string(s)); }, py::arg("status"));
+  py::class_<RunOptions<double>>(m, "RunOptions",
+                                 "Integrator (rk4 | dopri5 | rosenbrock23 | exponential) and stepper options; "
+                                 "keywords: the StepperOptions fields (docs/ode.md).")
+      .def(py::init(&make_run_options), py::arg("integrator") = "dopri5")
+      .def_property(
+          "integrator", [](const RunOptions<double>& o) { return std::string(to_string(o.integrator)); },
+          [](RunOptions<double>& o, const std::string& name) { o.integrator = parse_integrator(name); })
+      .def_property(
+          "rtol", [](const RunOptions<double>& o) { return o.stepper.rtol; },
+          [](RunOptions<double>& o, double v) { o.stepper.rtol = v; })
+      .def_property(
+          "atol", [](const RunOptions<double>& o) { return o.stepper.atol; },
+          [](RunOptions<double>& o, double v) { o.stepper.atol = v; })
+      .def_property(
+          "fixed_step", [](const RunOptions<double>& o) { return o.stepper.fixed_step; },
+          [](RunOptions<double>& o, double v) { o.stepper.fixed_step = v; })
+      .def_property(
+          "output_interval", [](const RunOptions<double>& o) { return o.stepper.output_interval; },
+          [](RunOptions<double>& o, double v) { o.stepper.output_interval = v; })
+      .def_readwrite("check_stability_limit", &RunOptions<double>::check_stability_limit);
+
+  py::class_<Probe>(m, "Probe", "A point whose displacement simulate() records: point_shape(member, coordinate, direction)^T q.")
+      .def(py::init([](MemberId member, double coordinate, LoadDirection direction) {
+             return Probe{member, coordinate, direction};
+           }),
+           py::arg("member"), py::arg("coordinate"), py::arg("direction") = LoadDirection::GlobalX)
+      .def_readonly("member", &Probe::member)
+      .def_readonly("coordinate", &Probe::coordinate)
+      .def_readonly("direction", &Probe::direction);
+  py::class_<StatisticsWindow<double>>(m, "StatisticsWindow", "Window [t_start, t_end] and period of DamperStatistics.")
+      .def(py::init([](double t_start, double t_end, double period) {
+             return StatisticsWindow<double>{t_start, t_end, period};
+           }),
+           py::arg("t_start"), py::arg("t_end"), py::arg("period"));
+  py::enum_<DamperRegime>(m, "DamperRegime")
+      .value("Stick", DamperRegime::Stick)
+      .value("StickSlip", DamperRegime::StickSlip)
+      .value("GrossSlip", DamperRegime::GrossSlip)
+      .value("NotReached", DamperRegime::NotReached);
+  m.def("regime_name", [](DamperRegime r) { return std::string(to_string(r)); }, py::arg("regime"));
+  using Stats = DamperWindowStatistics<double>;
+  py::class_<Stats>(m, "DamperWindowStatistics", "One damper's statistics over the window (DamperStatistics).")
+      .def_readonly("observed_time", &Stats::observed_time)
+      .def_readonly("stick_time", &Stats::stick_time)
+      .def_readonly("stick_fraction", &Stats::stick_fraction)
+      .def_readonly("switches", &Stats::switches)
+      .def_readonly("switches_per_period", &Stats::switches_per_period)
+      .def_readonly("regime", &Stats::regime);
+  py::class_<StepperStats>(m, "StepperStats")
+      .def_readonly("accepted_steps", &StepperStats::accepted_steps)
+      .def_readonly("rejected_steps", &StepperStats::rejected_steps)
+      .def_readonly("rhs_evaluations", &StepperStats::rhs_evaluations)
+      .def_readonly("guard_evaluations", &StepperStats::guard_evaluations)
+      .def_readonly("jacobian_evaluations", &StepperStats::jacobian_evaluations)
+      .def_readonly("factorisations", &StepperStats::factorisations)
+      .def_readonly("events", &StepperStats::events);
+  py::class_<Transition>(m, "Transition", "One transition of the run: every damper's state before and after.")
+      .def_readonly("t", &Transition::t)
+      .def_readonly("from_mode", &Transition::from)
+      .def_readonly("to_mode", &Transition::to);
+
+  py::class_<Run>(m, "Run", "The result and histories of simulate().")
+      .def_readonly("status", &Run::status)
+      .def_property_readonly("ok", [](const Run& r) { return r.status == Status::Success; })
+      .def_readonly("message", &Run::message)
+      .def_readonly("t", &Run::t, "time reached")
+      .def_readonly("x", &Run::x, "state at t")
+      .def_readonly("mode", &Run::mode, "contact states at t")
+      .def_readonly("stats", &Run::stats)
+      .def_readonly("E0", &Run::E0, "mechanical energy at the (consistent) start")
+      .def_readonly("energy", &Run::energy, "EnergyBalance at t (None without the energy audit)")
+      .def_readonly("transitions", &Run::transitions)
+      .def_readonly("damper_statistics", &Run::statistics)
+      .def_property_readonly("sample_t", [](const Run& r) { return py::array_t<double>(py::cast(r.sample_t)); })
+      .def_property_readonly("states",
+                             [](const Run& r) {
+                               const Index n = r.samples.empty() ? r.x.size() : r.samples.front().size();
+                               return stack<double>(r.samples, n, [](const State& s, Index c) { return s[c]; });
+                             })
+      .def_property_readonly("sample_modes",
+                             [](const Run& r) {
+                               return stack<std::int8_t>(r.sample_modes, static_cast<Index>(r.mode.size()),
+                                                         [](const std::vector<ContactState>& s, Index c) {
+                                                           return static_cast<std::int8_t>(s[static_cast<std::size_t>(c)]);
+                                                         });
+                             })
+      .def_property_readonly("probes",
+                             [](const Run& r) {
+                               const Index n = r.probe_values.empty() ? 0 : static_cast<Index>(r.probe_values[0].size());
+                               return stack<double>(r.probe_values, n, [](const std::vector<double>& s, Index c) {
+                                 return s[static_cast<std::size_t>(c)];
+                               });
+                             })
+      .def_property_readonly("force_t", [](const Run& r) { return py::array_t<double>(py::cast(r.force_t)); })
+      .def_property_readonly("forces", [](const Run& r) {
+        py::dict d;
+        const Index D = static_cast<Index>(r.mode.size());
+        const auto get = [](const System::Vector& v, Index c) { return v[c]; };
+        d["N"] = stack<double>(r.N, D, get), d["f"] = stack<double>(r.f, D, get), d["V"] = stack<double>(r.V, D, get);
+        d["y"] = stack<double>(r.y, D, get), d["X"] = stack<double>(r.X, D, get);
+        return d;
+      });
+
+  m.def("simulate", &run_simulation, py::arg("system"), py::arg("t_end"), py::arg("options") = RunOptions<double>{},
+        py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+        py::arg("probes") = std::vector<Probe>{}, py::arg("record_states") = true,
+        py::arg("evaluate_from") = std::numeric_limits<double>::infinity(), py::arg("statistics") = py::none(),
+        py::arg("consistent") = true,
+        "Runs the system from (mode, t0, x0) (default: its initial state) to t_end; samples every "
+        "options.output_interval (states, modes, probes; forces N, f, V, y, X from evaluate_from on).");
+}
+
+void bind_trade_study(py::module_& m) {
+  using Row = TradeRow<double>;
+  py::class_<Row>(m, "TradeRow", "One variant's cost and error against the reference.")
+      .def_readonly("name", &Row::name)
+      .def_readonly("started", &Row::started)
+      .def_readonly("status", &Row::status)
+      .def_readonly("message", &Row::message)
+      .def_readonly("t_reached", &Row::t_reached)
+      .def_readonly("cpu_seconds", &Row::cpu_seconds)
+      .def_readonly("rhs_evaluations", &Row::rhs_evaluations)
+      .def_readonly("events", &Row::events)
+      .def_readonly("output_error_max", &Row::output_error_max)
+      .def_readonly("output_error_rms", &Row::output_error_rms)
+      .def_readonly("switch_time_error", &Row::switch_time_error)
+      .def_readonly("missed_switches", &Row::missed_switches)
+      .def_readonly("extra_switches", &Row::extra_switches)
+      .def_readonly("energy_residual", &Row::energy_residual)
+      .def_property_readonly("ok", &Row::ok);
+  using Result = TradeStudyResult<double>;
+  py::class_<Result>(m, "TradeStudyResult")
+      .def_readonly("reference", &Result::reference)
+      .def_readonly("validation", &Result::validation)
+      .def_readonly("validation_method", &Result::validation_method)
+      .def_readonly("rows", &Result::rows);
+  using Variant = TradeVariant<System>;
+  py::class_<Variant>(m, "TradeVariant", "A name, a setup() returning a FrictionDampedSystem, and RunOptions.")
+      .def(py::init([](std::string name, py::object setup, const RunOptions<double>& run) {
+             if (!PyCallable_Check(setup.ptr()))
+               throw std::invalid_argument("TradeVariant: setup must be a callable returning a FrictionDampedSystem");
+             Variant v;
+             v.name = std::move(name);
+             v.run = run;
+             v.setup = [setup]() {
+               System sys = setup().cast<System>();
+               State x = sys.initial_state();
+               Mode mode = sys.requested_mode();
+               if (!sys.make_consistent(mode, 0.0, x))
+                 throw std::runtime_error("inconsistent or lifted-off initial contact state at t = 0");
+               return TradeSetup<System>{std::move(sys), std::move(mode), std::move(x)};
+             };
+             return v;
+           }),
+           py::arg("name"), py::arg("setup"), py::arg("run") = RunOptions<double>{})
+      .def_readonly("name", &Variant::name);
+  m.def(
+      "trade_study",
+      [](const Variant& reference, const std::vector<Variant>& variants, double t_end, const py::object& output,
+         double output_interval, int repeats, double validation_factor) {
+        TradeStudyOptions<System> o;
+        o.t_end = t_end;
+        o.output_interval = output_interval;
+        o.repeats = repeats;
+        o.validation_factor = validation_factor;
+        o.output = trade_output(output);
+        o.energy_residual = [](System& sys, const SimulationResult<System>& r) {
+          // Runs start from rest made consistent: E0 = 0 for a scene with no initial deflection.
+          if (!sys.options().energy_audit) return std::numeric_limits<double>::quiet_NaN();
+          const auto b = sys.energy_balance(r.mode, r.t, r.x, 0.0);
+          const double scale = std::max({std::abs(b.mechanical), std::abs(b.external_work), b.friction_dissipation,
+                                         b.viscous_dissipation});
+          return scale > 0 ? std::abs(b.residual) / scale : std::abs(b.residual);
+        };
+        return trade_study(reference, variants, o);
+      },
+      py::arg("reference"), py::arg("variants"), py::arg("t_end"), py::arg("output"), py::arg("output_interval") = 1e-3,
+      py::arg("repeats") = 3, py::arg("validation_factor") = 100.0,
+      "Speed/accuracy of each variant against a validated tight reference (docs/model.md); each variant's "
+      "setup() is called per repeat. output: a Probe or f(t, x).");
+  m.def(
+      "trade_csv",
+      [](const std::vector<Row>& rows) {
+        std::ostringstream os;
+        write_trade_csv(os, rows);
+        return os.str();
+      },
+      py::arg("rows"), "The rows as CSV text (write_trade_csv).");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(stickslip, m) {
+  m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
+  m.attr("__version__") = STICKSLIP_VERSION_STRING;
+  bind_frame(m);
+  bind_dampers(m);
+  bind_system(m);
+  bind_simulate(m);
+  bind_trade_study(m);
+}
