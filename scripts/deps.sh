@@ -8,7 +8,7 @@ set -euo pipefail
 what=${1:-all}
 pkgs=(cmake g++ make libeigen3-dev libspectra-dev googletest libgtest-dev libbenchmark-dev)
 case "$what" in
-  test) pkgs+=(python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
+  test) pkgs+=(python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
   demo) pkgs+=(python3-matplotlib) ;;
   all) pkgs+=(python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
               libopenmpi-dev openmpi-bin) ;;
