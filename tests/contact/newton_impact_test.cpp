@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace contact_newton_impact_test {  // named: the contact test files share one (unity) translation unit
 namespace {
@@ -126,6 +127,120 @@ TEST(CoulombImpulse, SticksWhenTheStickImpulseIsWithinTheCapacityAndSlidesOtherw
   const auto back = stickslip::coulomb_impulse(law, -1.0, 1.0 / m, 4.9);  // mirror image
   EXPECT_EQ(back.state, ContactState::SlipNegative);
   EXPECT_DOUBLE_EQ(back.impulse, 1.225);
+}
+
+// A point mass m (velocity u = (u_x, u_y)) lands on the flat top of a cart of mass M that slides
+// without friction along an incline a = (cos th, sin th): the contact's normal is y, its tangent x,
+// and the cart's inertia couples them: W = I/m + b b^T / M with b = (sin th, cos th) in (n, t)
+// order, W_nt = sin th cos th / M. The outcome is checked on the bodies' own velocities, updated
+// by the impulses (u += L/m, s -= (L_t cos th + L_n sin th)/M): Newton's law on the relative
+// normal velocity, Coulomb's law, momentum along the incline and the kinetic energy lost.
+struct MassOnCart {
+  double m = 1.0, M = 2.0, th = 0.5;
+  Eigen::Matrix2d W() const {
+    const Eigen::Vector2d b(std::sin(th), std::cos(th));
+    return Eigen::Matrix2d::Identity() / m + b * b.transpose() / M;
+  }
+  // Relative (normal, tangential) velocity of the mass with respect to the cart.
+  Eigen::Vector2d relative(const Eigen::Vector2d& u, double s) const {
+    return {u.y() - s * std::sin(th), u.x() - s * std::cos(th)};
+  }
+  double momentum_along_incline(const Eigen::Vector2d& u, double s) const {
+    return m * (u.x() * std::cos(th) + u.y() * std::sin(th)) + M * s;
+  }
+  double kinetic_energy(const Eigen::Vector2d& u, double s) const {
+    return 0.5 * m * u.squaredNorm() + 0.5 * M * s * s;
+  }
+};
+
+struct CartImpactCase {
+  double mu, e, u_x, u_y, s;
+  ContactState expected;
+};
+
+TEST(FrictionalImpact, CoupledDirectionsSatisfyNewtonCoulombMomentumAndEnergyOnTheBodies) {
+  const MassOnCart cart;
+  ASSERT_GT(std::abs(cart.W()(0, 1)), 0.1);  // really coupled
+  for (const CartImpactCase& c : {CartImpactCase{1.0, 0.6, 0.3, -2.0, 0.5, ContactState::Stick},
+                                  CartImpactCase{0.1, 0.6, 3.0, -2.0, 0.5, ContactState::SlipPositive},
+                                  CartImpactCase{0.1, 0.3, -3.0, -1.0, -0.2, ContactState::SlipNegative},
+                                  CartImpactCase{0.4, 0.0, 0.2, -1.5, 0.1, ContactState::Stick},
+                                  // v_t = -0.01: the normal impulse drives the sliding forward
+                                  // (W_tn L_n > mu W_tt L_n): slip reverses through the impact.
+                                  CartImpactCase{0.1, 0.6, 0.5 * std::cos(0.5) - 0.01, -2.0, 0.5,
+                                                 ContactState::SlipPositive}}) {
+    SCOPED_TRACE("mu " + std::to_string(c.mu) + " u_x " + std::to_string(c.u_x));
+    const Eigen::Vector2d u(c.u_x, c.u_y);
+    const Eigen::Vector2d v = cart.relative(u, c.s);
+    ASSERT_LT(v[0], 0.0);
+    const auto r = stickslip::frictional_impact(NewtonImpact<double>(c.e, 1e-6), Law(c.mu, c.mu),
+                                                cart.W(), v);
+    ASSERT_TRUE(r.resolved);
+    EXPECT_EQ(r.state, c.expected);
+    EXPECT_EQ(r.lands, c.e == 0.0);
+    // The bodies after the impulses (the cart receives -L).
+    const Eigen::Vector2d L_xy(r.impulse[1], r.impulse[0]);
+    const Eigen::Vector2d u_after = u + L_xy / cart.m;
+    const double s_after =
+        c.s - (L_xy.x() * std::cos(cart.th) + L_xy.y() * std::sin(cart.th)) / cart.M;
+    const Eigen::Vector2d v_after = cart.relative(u_after, s_after);
+    // Velocities O(1), masses O(1): round-off of a few operations, 1e-14.
+    EXPECT_NEAR(v_after[0], -c.e * v[0], 1e-14);
+    EXPECT_NEAR(v_after[0], r.velocity_after[0], 1e-14);
+    EXPECT_NEAR(v_after[1], r.velocity_after[1], 1e-14);
+    EXPECT_GT(r.impulse[0], 0.0);
+    if (c.expected == ContactState::Stick) {
+      EXPECT_NEAR(v_after[1], 0.0, 1e-14);
+      EXPECT_LE(std::abs(r.impulse[1]), c.mu * r.impulse[0]);
+    } else {
+      const double sigma = stickslip::slip_sign(c.expected);
+      EXPECT_NEAR(r.impulse[1], -sigma * c.mu * r.impulse[0], 1e-14);
+      EXPECT_GE(sigma * v_after[1], 0.0);  // no reversal
+    }
+    EXPECT_NEAR(cart.momentum_along_incline(u_after, s_after), cart.momentum_along_incline(u, c.s),
+                1e-14);
+    EXPECT_NEAR(cart.kinetic_energy(u, c.s) - cart.kinetic_energy(u_after, s_after),
+                r.energy_loss, 1e-13);
+    EXPECT_GE(r.energy_loss, 0.0);
+  }
+}
+
+TEST(FrictionalImpact, DecoupledDirectionsAreNewtonThenCoulombImpulse) {
+  const Eigen::Matrix2d W = Eigen::Vector2d(0.5, 0.5).asDiagonal();
+  const NewtonImpact<double> newton(0.7, 1e-3);
+  const Law law(0.35, 0.25);
+  for (double v_t : {-2.0, -0.4, 0.0, 0.1, 3.0}) {
+    const auto r = stickslip::frictional_impact(newton, law, W, Eigen::Vector2d(-1.5, v_t));
+    const auto n = newton.impact(-1.5, 0.5);
+    const auto t = stickslip::coulomb_impulse(law, v_t, 0.5, n.impulse);
+    EXPECT_DOUBLE_EQ(r.impulse[0], n.impulse) << v_t;
+    EXPECT_DOUBLE_EQ(r.impulse[1], t.impulse) << v_t;
+    EXPECT_EQ(r.state, t.state) << v_t;
+    EXPECT_NEAR(r.energy_loss, n.energy_loss + t.energy_loss, 1e-14) << v_t;
+  }
+}
+
+TEST(FrictionalImpact, NoImpulseWithoutApproachAndBadInverseMassThrows) {
+  const Law law(0.3, 0.3);
+  const NewtonImpact<double> newton(0.5, 0.0);
+  const auto r = stickslip::frictional_impact(newton, law, Eigen::Matrix2d::Identity(),
+                                              Eigen::Vector2d(0.2, -1.0));
+  EXPECT_EQ(r.impulse, Eigen::Vector2d::Zero());
+  EXPECT_EQ(r.velocity_after, Eigen::Vector2d(0.2, -1.0));
+  EXPECT_EQ(r.state, ContactState::SlipNegative);
+  Eigen::Matrix2d bad;
+  bad << 1.0, 2.0, 2.0, 1.0;  // indefinite
+  expect_invalid_argument([&] { stickslip::frictional_impact(newton, law, bad, Eigen::Vector2d(-1, 0)); },
+                          {"frictional_impact", "positive definite"});
+  bad << 1.0, 0.1, 0.2, 1.0;
+  expect_invalid_argument([&] { stickslip::frictional_impact(newton, law, bad, Eigen::Vector2d(-1, 0)); },
+                          {"frictional_impact", "symmetric"});
+  expect_invalid_argument(
+      [&] {
+        stickslip::frictional_impact(newton, law, Eigen::Matrix2d::Identity(),
+                                     Eigen::Vector2d(std::nan(""), 0));
+      },
+      {"frictional_impact", "v_n"});
 }
 
 TEST(CoulombContactSeparated, NoForceOneGapGuardFallingAndItsName) {

@@ -3,13 +3,19 @@
 /// \brief Impact of a contact that closes again (ContactState::Separated, gap = 0): Newton's
 /// restitution on the relative normal velocity with the impulse through the coupled system, the
 /// rule that ends a sequence of accumulating bounces, and the tangential impulse by Coulomb's law
-/// for impulses. docs/contact.md, "Separation and impact".
+/// for impulses, alone (decoupled directions) or with the normal and tangential directions coupled
+/// through the inverse effective mass (frictional_impact). docs/contact.md, "Separation and
+/// impact".
 
 #include <stickslip/contact/contact_state.hpp>
 #include <stickslip/contact/friction_law.hpp>
 #include <stickslip/detail/validate.hpp>
 
+#include <Eigen/Core>
+#include <Eigen/LU>
+
 #include <cmath>
+#include <string>
 #include <type_traits>
 
 namespace stickslip {
@@ -154,6 +160,103 @@ TangentialImpact<typename Law::Scalar> coulomb_impulse(const Law& law, typename 
     r.velocity_after = v_t + inverse_mass_t * r.impulse;
   }
   r.energy_loss = NewtonImpact<Scalar>::impact_energy_loss(v_t, r.velocity_after, inverse_mass_t);
+  return r;
+}
+
+/// Outcome of frictional_impact: normal and tangential impulses of one impact with the directions
+/// coupled.
+template <class Scalar>
+struct FrictionalImpact {
+  /// (normal, tangential) impulse on the body; normal >= 0.
+  Eigen::Matrix<Scalar, 2, 1> impulse = Eigen::Matrix<Scalar, 2, 1>::Zero();
+  /// (normal, tangential) relative velocity after the impact.
+  Eigen::Matrix<Scalar, 2, 1> velocity_after = Eigen::Matrix<Scalar, 2, 1>::Zero();
+  /// Kinetic energy lost, -impulse . (v_before + velocity_after) / 2.
+  Scalar energy_loss = Scalar(0);
+  /// True: persistent contact follows (NewtonImpact's landing rule).
+  bool lands = false;
+  /// Stick when the tangential impulse stopped the sliding, else the slip state after.
+  ContactState state = ContactState::Stick;
+  /// False when neither stick nor a slip direction satisfies Newton's and Coulomb's laws
+  /// together (then impulse is zero); not met in 200 000 random positive definite W, v, e, mu
+  /// (a sampling, not a proof), kept so that a model can report it rather than go on.
+  bool resolved = true;
+};
+
+/// One impact with friction when the tangential impulse also changes the normal velocity (and the
+/// normal impulse the sliding velocity): the relative velocities v = (v_n, v_t) change by
+/// W L with the symmetric positive definite 2 x 2 inverse effective mass W = G M^-1 G^T of the
+/// contact's normal and tangential rows G (a damper of mass m on a modal member:
+/// W = I/m + [psi_w psi_u]^T [psi_w psi_u], psi in mass-normalised modes). Newton's law on the
+/// normal velocity (v_n after = -e v_n, or the landing rule of NewtonImpact) and Coulomb's law for
+/// impulses (the rule of coulomb_impulse) are solved together:
+///
+///   stick:  W L = (v_n^+ - v_n, -v_t),   accepted if L_n >= 0 and |L_t| <= mu_s L_n;
+///   slip s: L_t = -s mu_k(|v_t|) L_n,  (W_nn - s mu_k W_nt) L_n = v_n^+ - v_n,
+///           accepted if W_nn - s mu_k W_nt > 0 and s v_t^+ >= 0 (the slip does not reverse),
+///
+/// trying s = sgn v_t first (sgn of the stick impulse's opposite when v_t = 0), then -s. With
+/// W_nt = 0 this is NewtonImpact::impact followed by coulomb_impulse. When v_n >= 0 (no approach)
+/// no impulse acts. Newton's kinematic restitution with coupled friction may create energy
+/// (Stronge, Impact Mechanics, Cambridge 2000, ch. 4): energy_loss is then negative and reported
+/// as such.
+/// \param newton Newton's law and landing rule for the normal direction
+/// \param law the friction law (has_stick_state)
+/// \param W inverse effective mass, rows/columns (normal, tangential): symmetric, positive definite
+/// \param v relative velocity before the impact: (v_n, v_t), v_n < 0 approaching
+/// \throws std::invalid_argument if v or W is non-finite, W is not symmetric or not positive
+///         definite.
+template <class Law, std::enable_if_t<is_friction_law_v<Law> && Law::has_stick_state, int> = 0>
+FrictionalImpact<typename Law::Scalar> frictional_impact(
+    const NewtonImpact<typename Law::Scalar>& newton, const Law& law,
+    const Eigen::Matrix<typename Law::Scalar, 2, 2>& W,
+    const Eigen::Matrix<typename Law::Scalar, 2, 1>& v) {
+  using Scalar = typename Law::Scalar;
+  using Vec2 = Eigen::Matrix<Scalar, 2, 1>;
+  using std::abs;
+  static const std::string where = "frictional_impact";
+  detail::require_finite(where, "v_n", v[0]);
+  detail::require_finite(where, "v_t", v[1]);
+  if (!detail::all_finite(W)) detail::throw_invalid(where, "W must be finite", W.sum());
+  if (!(W(0, 1) == W(1, 0)))
+    detail::throw_invalid(where, "W must be symmetric: W(0,1) = W(1,0)", W(0, 1) - W(1, 0));
+  if (!(W(0, 0) > Scalar(0) && W.determinant() > Scalar(0)))
+    detail::throw_invalid(where, "W must be positive definite (W(0,0) > 0, det W > 0)",
+                          W.determinant());
+  FrictionalImpact<Scalar> r;
+  r.lands = newton.lands(v[0]);
+  if (!(v[0] < Scalar(0))) {  // not approaching: no impulse
+    r.velocity_after = v;
+    r.state = v[1] != Scalar(0) ? slip_state(v[1]) : ContactState::Stick;
+    return r;
+  }
+  const Scalar v_n_after = r.lands ? Scalar(0) : -newton.restitution() * v[0];
+  const Scalar dv_n = v_n_after - v[0];
+  auto finish = [&](const Vec2& L, ContactState state) {
+    r.impulse = L;
+    r.velocity_after = v + W * L;
+    r.velocity_after[0] = v_n_after;  // exact by construction; avoids round-off of W L
+    if (state == ContactState::Stick) r.velocity_after[1] = Scalar(0);
+    r.energy_loss = -L.dot(v + r.velocity_after) / Scalar(2);
+    r.state = state;
+    return r;
+  };
+  const Vec2 stick = W.inverse() * Vec2(dv_n, -v[1]);
+  if (stick[0] >= Scalar(0) && abs(stick[1]) <= law.static_coefficient() * stick[0])
+    return finish(stick, ContactState::Stick);
+  const Scalar mu = law.kinetic_coefficient(abs(v[1]));
+  const Scalar first = v[1] != Scalar(0) ? (v[1] > 0 ? Scalar(1) : Scalar(-1))
+                                         : (stick[1] > 0 ? Scalar(-1) : Scalar(1));
+  for (Scalar s : {first, -first}) {
+    const Scalar d = W(0, 0) - s * mu * W(0, 1);
+    if (!(d > Scalar(0))) continue;
+    const Scalar L_n = dv_n / d;
+    const Vec2 L(L_n, -s * mu * L_n);
+    const Scalar v_t_after = v[1] + W(1, 0) * L[0] + W(1, 1) * L[1];
+    if (s * v_t_after >= Scalar(0)) return finish(L, slip_state(s));
+  }
+  r.resolved = false;
+  r.velocity_after = v;
   return r;
 }
 
