@@ -4,17 +4,20 @@
 // a stuck damper's contact cannot move (X' = V = 0), so a scene whose only moving damper never
 // slips is the fixed-contact scene up to the integration error; and the energy balance, which
 // closes only if the fixed damper's X rows, slope work and kinetic energy are all consistent.
+#include "contact/contact_test_util.hpp"
 #include "model/model_test_scenes.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace per_damper_choices_test {
 
 using namespace model_test;
+using contact_test::expect_invalid_argument;
 
 RunOptions<double> tight(double rtol = 1e-11) {
   RunOptions<double> run;
@@ -32,6 +35,27 @@ double tip_max_difference(const Recorder& a, const Recorder& b, double& scale) {
     scale = std::max(scale, a.x[k].head(6).cwiseAbs().maxCoeff());
   }
   return diff;
+}
+
+// ContactState::Separated (issue #22, the contact component) is not a state of this model: a
+// damper cannot start in it and a mode holding it is rejected before any solve (before, the model
+// would have read a separated damper as slipping with no slip direction).
+TEST(PerDamperInitialState, LiftOffAndSeparatedAreRejectedAndSoIsASeparatedMode) {
+  const TScene s = make_t_frame(4, 6, 2);
+  for (ContactState bad : {ContactState::LiftOff, ContactState::Separated}) {
+    auto dampers = paper_dampers(s, 10.0);
+    dampers[1].initial_state = bad;
+    expect_invalid_argument([&] { System sys(s.frame, s.basis, dampers, paper_load(s)); },
+                            {"PointDamper[1]", "initial_state", stickslip::to_string(bad)});
+  }
+  System sys(s.frame, s.basis, paper_dampers(s, 10.0), paper_load(s));
+  DamperStates mode = sys.requested_mode();
+  mode[0] = ContactState::Separated;
+  System::State x = sys.initial_state(), dxdt;
+  expect_invalid_argument([&] { sys.rhs(mode, 0.0, x, dxdt); },
+                          {"FrictionDampedSystem::evaluate", "mode[0]", "separated"});
+  expect_invalid_argument([&] { sys.make_consistent(mode, 0.0, x); },
+                          {"FrictionDampedSystem::make_consistent", "mode[0]", "separated"});
 }
 
 TEST(PerDamperContactPoint, EveryDamperFixedIsTheSceneWideFixedContactModelBitwise) {

@@ -74,10 +74,10 @@ class CoulombContact {
   }
 
   /// Friction force on the body (eq. 1): slip -mu_k(|v|) N sgn(state); stick f_required;
-  /// lift-off 0. Regularised laws: -coefficient(v) N in every state but lift-off.
+  /// lift-off and separated 0. Regularised laws: -coefficient(v) N in every contact state.
   /// No checks (hot path): non-finite inputs propagate to the state for the stepper to report.
   Scalar friction_force(ContactState s, Scalar v, Scalar N, Scalar f_required) const {
-    if (s == ContactState::LiftOff) return Scalar(0);
+    if (!is_in_contact(s)) return Scalar(0);
     if constexpr (has_stick_state) {
       using std::abs;
       if (s == ContactState::Stick) return f_required;
@@ -89,15 +89,16 @@ class CoulombContact {
   }
 
   /// Number of guards in state s: stick 2, slip 1 (regularised laws 0), plus 1 for N when
-  /// watch_lift_off; lift-off 1 (N, re-contact).
+  /// watch_lift_off; lift-off 1 (N, re-contact); separated 1 (the gap, impact).
   static Eigen::Index num_guards(ContactState s, bool watch_lift_off) noexcept {
-    if (s == ContactState::LiftOff) return 1;
+    if (!is_in_contact(s)) return 1;
     return num_friction_guards(s) + (watch_lift_off ? 1 : 0);
   }
 
   /// Guard values g[0 .. num_guards(s, watch_lift_off)): stick g0 = mu_s N - f_required,
   /// g1 = mu_s N + f_required; slip g0 = v; then N when lift-off is watched; lift-off state
-  /// g0 = N. Directions in guard_direction().
+  /// g0 = N. Directions in guard_direction(). Not for Separated: its guard is the model's gap,
+  /// written by gap_guard().
   void guards(ContactState s, Scalar v, Scalar N, Scalar f_required, bool watch_lift_off,
               Scalar* g) const {
     guards(s, v, N, [f_required] { return f_required; }, watch_lift_off, g);
@@ -110,6 +111,8 @@ class CoulombContact {
             std::enable_if_t<std::is_invocable_r_v<Scalar, RequiredForce&>, int> = 0>
   void guards(ContactState s, Scalar v, Scalar N, RequiredForce&& f_required,
               bool watch_lift_off, Scalar* g) const {
+    STICKSLIP_ASSERT(s != ContactState::Separated &&
+                     "CoulombContact::guards: a separated contact's guard is its gap (gap_guard)");
     if (s == ContactState::LiftOff) {
       g[0] = N;
       return;
@@ -128,6 +131,10 @@ class CoulombContact {
     if (watch_lift_off) g[n] = N;
   }
 
+  /// Guard of the Separated state: g0 = gap = y_body - y_surface (>= 0 while separated, in
+  /// the model's length unit), Falling: the body reaches the surface (impact, NewtonImpact).
+  static void gap_guard(Scalar gap, Scalar* g) noexcept { g[0] = gap; }
+
   /// True when the sliding-velocity guard of state s (slip: the contact's guard 0, at index
   /// `first` of the system's guard vector) is among the guards `which` that fired together. The
   /// stepper then hands over a state on v = 0 (to |v'| times its event time tolerance): the
@@ -142,18 +149,21 @@ class CoulombContact {
 
   /// Crossing direction of guard i in state s: stick g0, g1 Falling (capacity exceeded; g0 leads
   /// to slip negative, g1 to slip positive); SlipPositive g0 Falling, SlipNegative g0 Rising;
-  /// N Falling (lift-off); in the lift-off state N Rising (re-contact).
+  /// N Falling (lift-off); in the lift-off state N Rising (re-contact); in the separated state
+  /// the gap Falling (impact).
   static CrossingDirection guard_direction(ContactState s, Eigen::Index i,
                                            bool watch_lift_off) noexcept {
     STICKSLIP_ASSERT(i >= 0 && i < num_guards(s, watch_lift_off));
     static_cast<void>(watch_lift_off);
     if (s == ContactState::LiftOff) return CrossingDirection::Rising;
+    if (s == ContactState::Separated) return CrossingDirection::Falling;
     if (i == num_friction_guards(s)) return CrossingDirection::Falling;  // N, lift-off
     return s == ContactState::SlipNegative ? CrossingDirection::Rising : CrossingDirection::Falling;
   }
 
   /// Transition decision at an event (docs/contact.md, "Decision rules"), first match wins:
-  ///  1. N <= 0                                  -> LiftOff
+  ///  1. N <= 0                                  -> LiftOff (a model that lets the contact
+  ///                                                open maps it to Separated)
   ///  2. |v| > velocity_tolerance                -> slip in sgn(v)
   ///  3. exact law, |f_stick_required| <= mu_s N -> Stick; regularised law -> Stick (label)
   ///  4. exact law                               -> slip in -sgn(f_stick_required)

@@ -292,10 +292,12 @@ class FrictionDampedSystem {
     return m;
   }
 
-  /// Checks that x has state_size() entries and mode has num_dampers() states (two comparisons;
+  /// Checks that x has state_size() entries, mode has num_dampers() states and none of them is
+  /// ContactState::Separated, which this model does not have (two comparisons and one per damper;
   /// done by evaluate() before every solve, so by rhs, guards, make_consistent and the outputs,
   /// and by simulate() before the first step).
-  /// \throws std::invalid_argument naming `where`, the expected and the given sizes
+  /// \throws std::invalid_argument naming `where`, the expected and the given sizes, or the
+  ///         separated damper
   void validate_state(const Mode& mode, const State& x, const char* where = "FrictionDampedSystem") const {
     if (x.size() != state_size())
       throw std::invalid_argument(std::string(where) + ": state x has size " + std::to_string(x.size()) +
@@ -304,6 +306,11 @@ class FrictionDampedSystem {
       throw std::invalid_argument(std::string(where) + ": mode (DamperStates) has " +
                                   std::to_string(mode.size()) + " states, expected num_dampers() = " +
                                   std::to_string(D_));
+    for (Index i = 0; i < D_; ++i)  // the model has no separated damper yet (issue #22)
+      if (mode[i] == ContactState::Separated)
+        throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) +
+                                    "] is separated; FrictionDampedSystem models contact that "
+                                    "stays closed or stops at lift-off");
   }
 
   // ---- hybrid-system concept ------------------------------------------------------------------
@@ -372,12 +379,14 @@ class FrictionDampedSystem {
 
   /// A consistent initial mode for state x at t, starting from the requested states; it also
   /// reports lift-off at t0 (N <= 0) through `stop_reason()`. Returns false when none exists.
-  /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
+  /// \throws std::invalid_argument when x or mode has the wrong size or a separated damper
+  ///         (see validate_state)
   bool make_consistent(Mode& mode, Scalar t, State& x);
 
   // ---- outputs --------------------------------------------------------------------------------
   /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call.
-  /// \throws std::invalid_argument when x or mode has the wrong size (see validate_state)
+  /// \throws std::invalid_argument when x or mode has the wrong size or a separated damper
+  ///         (see validate_state)
   const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x);
 
   /// How the most recent solve (the most recent evaluate() that missed its cache) was done.

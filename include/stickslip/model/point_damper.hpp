@@ -81,6 +81,8 @@ struct PointDamper {
     if (!(side == Scalar(1) || side == Scalar(-1))) detail::throw_invalid(where, "side must be +1 or -1", side);
     if (initial_state == ContactState::LiftOff)
       detail::throw_invalid(where, "initial_state cannot be lift-off", "lift_off");
+    if (initial_state == ContactState::Separated)  // the model has no separated damper (issue #22)
+      detail::throw_invalid(where, "initial_state cannot be separated", "separated");
   }
 };
 
