@@ -2,6 +2,8 @@
 add_library(stickslip_project_options INTERFACE)
 target_compile_options(stickslip_project_options INTERFACE
   -Wall -Wextra -Wpedantic -Wshadow -Wconversion
+  # Clang's -Wconversion includes -Wsign-conversion, GCC's (C++) does not: one warning set for both.
+  $<$<CXX_COMPILER_ID:Clang>:-Wno-sign-conversion>
   $<$<BOOL:${STICKSLIP_WARNINGS_AS_ERRORS}>:-Werror>)
 if(STICKSLIP_SANITIZE)
   target_compile_options(stickslip_project_options INTERFACE

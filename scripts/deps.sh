@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
 # Installs the Debian packages stickslip needs, only those that are missing.
 # Usage: scripts/deps.sh [test|demo|bench|all]   (all is the default)
-# test: also pybind11, numpy and pytest (the Python module and its tests, docs/python.md) and
+# test: also Clang 14 (the sanitizer suite's compiler), pybind11, numpy and pytest (the Python
+# module and its tests, docs/python.md) and
 # Open MPI (the MPI sweep and its tests, docs/sweeps.md).
 # bench: also Boost (odeint, headers) and SUNDIALS (CVODE) for the peer benchmark (scripts/peers.sh).
 set -euo pipefail
 what=${1:-all}
 pkgs=(cmake g++ make libeigen3-dev libspectra-dev googletest libgtest-dev libbenchmark-dev)
 case "$what" in
-  test) pkgs+=(python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
+  test) pkgs+=(clang-14 libclang-rt-14-dev python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
   demo) pkgs+=(python3-matplotlib) ;;
-  all) pkgs+=(python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
+  all) pkgs+=(clang-14 libclang-rt-14-dev python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
               libopenmpi-dev openmpi-bin) ;;
   bench) pkgs+=(libboost-dev libsundials-dev) ;;
 esac
