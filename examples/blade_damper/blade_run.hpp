@@ -6,11 +6,11 @@
 #include "blade_regime.hpp"
 #include "blade_scene.hpp"
 
+#include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/stickslip.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <limits>
 #include <optional>
 #include <string>
@@ -144,7 +144,7 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   auto mode = sys.requested_mode();
   RunOptions<double> run = settings.run;
   run.stepper.output_interval = settings.sample_interval;
-  const std::clock_t c0 = std::clock();
+  const double c0 = stickslip::detail::thread_cpu_seconds();  // this run's thread (sweeps run in parallel)
   if (!sys.make_consistent(mode, 0.0, x0)) {
     rec.status = Status::StoppedBySystem;
     rec.message = "inconsistent or lifted-off initial contact state at t = 0";
@@ -153,7 +153,7 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   const double E0 = sys.options().energy_audit ? sys.mechanical_energy(mode, 0.0, x0) : 0.0;
   detail::Recorder recorder(scene, settings, rec);
   auto result = simulate(sys, mode, 0.0, x0, settings.duration, run, recorder);
-  rec.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  rec.cpu_seconds = stickslip::detail::thread_cpu_seconds() - c0;
   rec.status = result.status;
   rec.message = result.message;
   rec.t_end = result.t;

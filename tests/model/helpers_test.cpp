@@ -5,12 +5,17 @@
 // closed-form response sampled by brute force.
 #include "model/model_test_scenes.hpp"
 
+#include <stickslip/detail/cpu_time.hpp>
+
 #include <Eigen/SparseCholesky>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <thread>
 #include <vector>
 
 namespace helpers_test {
@@ -388,6 +393,32 @@ TEST(DamperStatistics, RegularisedDamperIsStuckWhileItsSpeedIsBelowVEps) {
   // of the fraction covers both for the ~100 crossings with a margin of ten.
   EXPECT_NEAR(st.stick_fraction, fraction, 1e-5);
   EXPECT_EQ(st.regime, classify_regime(fraction));
+}
+
+// ---- CPU time of one run among parallel runs ------------------------------------------------
+
+// trade_study() and the blade example's threaded sweep time each run by the CPU time of the thread
+// that runs it. The process's CPU time (std::clock(), used before) also counts every other
+// thread: a sweep on two threads booked about twice the CPU to each run. Here the measuring thread
+// only waits while a second thread burns at least 0.05 s of CPU of its own (counted by its own
+// thread clock, so the burn happens whatever else loads the machine): the waiting thread's CPU
+// time must stay far below that. The bound 0.02 s leaves room for the waiting thread's own work
+// (thread start, a condition poll every millisecond); std::clock() gives >= 0.05 s here.
+TEST(ThreadCpuTime, CountsTheCallingThreadOnly) {
+  std::atomic<bool> done{false};
+  const double start = stickslip::detail::thread_cpu_seconds();
+  std::thread burner([&done] {
+    const double t0 = stickslip::detail::thread_cpu_seconds();
+    volatile double sink = 0;
+    while (stickslip::detail::thread_cpu_seconds() - t0 < 0.05)
+      for (int i = 0; i < 10000; ++i) sink = sink + std::sqrt(static_cast<double>(i));
+    done = true;
+  });
+  while (!done) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  burner.join();
+  const double waited = stickslip::detail::thread_cpu_seconds() - start;
+  EXPECT_GE(waited, 0.0);
+  EXPECT_LT(waited, 0.02);
 }
 
 }  // namespace helpers_test

@@ -3,12 +3,12 @@
 /// \brief trade_study(): the speed/accuracy trade of model and integrator variants on the
 /// caller's own scene, each variant measured against a validated tight reference.
 
+#include "stickslip/detail/cpu_time.hpp"
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/simulate.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -67,7 +67,7 @@ struct TradeRow {
   Status status = Status::Success;  ///< how the run ended (meaningful when started)
   std::string message;              ///< the run's message, or the exception's what()
   Scalar t_reached = std::numeric_limits<Scalar>::quiet_NaN();  ///< time the run reached
-  double cpu_seconds = 0;           ///< median over the repeats of std::clock() process CPU time
+  double cpu_seconds = 0;           ///< median over the repeats of the run's CPU time (its thread's: detail::thread_cpu_seconds)
   long rhs_evaluations = 0;         ///< right-hand-side evaluations of the last repeat
   long events = 0;                  ///< events (transitions) of the last repeat
   /// max_k |y_k - y_ref,k| / max_k |y_ref,k| over the common sample grid.
@@ -145,9 +145,9 @@ TradeRow<typename System::Scalar> run_trade_variant(const TradeVariant<System>& 
       record.samples.clear();
       record.samples.reserve(expected_samples);  // no reallocation inside the run's steps
       record.switches.clear();
-      const std::clock_t start = std::clock();
+      const double start = detail::thread_cpu_seconds();
       const auto result = simulate(setup.system, setup.mode, options.t0, setup.x0, options.t_end, run, record);
-      cpu.push_back(static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC);
+      cpu.push_back(detail::thread_cpu_seconds() - start);
       row.started = true;
       row.status = result.status;
       row.message = result.message;
