@@ -95,8 +95,12 @@ class ExactLinearStepper {
   /// propagator of the grid step (or of the output interval) together with the closed-form
   /// quadrature matrices (Van Loan; a few matrix exponentials of twice the augmented size), and
   /// from then on uses one product per step (or sample) instead of a Taylor series and a
-  /// Gauss-Legendre rule through rhs. Short modes keep the cheaper set-up.
-  static constexpr long closed_form_after = 32;
+  /// Gauss-Legendre rule through rhs. Short modes keep the cheaper set-up (the Van Loan blocks
+  /// cost about as much as a few hundred Gauss-Legendre grid steps of the blade model).
+  static constexpr long closed_form_after = 256;
+  /// Grid steps of an exact mode after which long steps are considered (their set-up, the
+  /// guard-rate bounds over 2^jump_levels grid steps, costs about a thousand grid steps).
+  static constexpr long long_steps_after = 1024;
   /// Long steps of an exact mode: up to 2^jump_levels grid steps in one product, taken when a
   /// bound on every guard's rate over the step shows that no guard can reach its trigger (see
   /// the class comment).
@@ -191,7 +195,7 @@ class ExactLinearStepper {
   // closed_form_after grid steps; true when w_grid_ is ready.
   bool grid_quadrature_ready();
   // Long steps: the propagators, quadrature matrices and guard-rate bounds of H_j = 2^j delta
-  // (j = 1 .. jump_levels), once per mode (after closed_form_after grid steps); the longest H_j
+  // (j = 1 .. jump_levels), once per mode (after long_steps_after grid steps); the longest H_j
   // (0: none) with no guard able to reach its trigger from (t_, y_) and t_ + H_j <= t_end.
   bool jumps_possible() const;
   void prepare_jumps();
@@ -354,7 +358,7 @@ bool ExactLinearStepper<System>::grid_quadrature_ready() {
 template <class System>
 bool ExactLinearStepper<System>::jumps_possible() const {
   return exact_ && (!guarded_ || closed_form_guards()) && (forms_ || nq_ == 0) &&
-         flow_.has_ladder() && std::isfinite(delta_) && mode_steps_ >= closed_form_after;
+         flow_.has_ladder() && std::isfinite(delta_) && mode_steps_ >= long_steps_after;
 }
 
 template <class System>
@@ -415,7 +419,7 @@ int ExactLinearStepper<System>::choose_jump(Scalar t_end) {
   const Scalar next = t0_ + static_cast<Scalar>(next_sample_) * opt_.output_interval;
   absy_ = y_.cwiseAbs();
   for (int j = jump_levels; j >= 1; --j) {
-    const Scalar H = delta_ * std::pow(Scalar(2), Scalar(j));
+    const Scalar H = std::ldexp(delta_, j);
     if (!(t_ + H < t_end)) continue;
     if (samples && k_chain_ < 0 && next < t_ + H) continue;
     if (guarded_) {
@@ -769,7 +773,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       const bool grid = hs == delta_ && flow_.has_ladder();
       if (level > 0) {
         const auto j = static_cast<std::size_t>(level - 1);
-        t1 = t_ + delta_ * std::pow(Scalar(2), Scalar(level));
+        t1 = t_ + std::ldexp(delta_, level);
         y1_.noalias() = jump_phi_[j] * y_;
         ++work_.matvecs;
         flow_.set_clock(t1, y1_);
