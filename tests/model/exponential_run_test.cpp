@@ -58,6 +58,17 @@ TEST_P(ExponentialRun, SameEventsTipHistoryAndClosedEnergyAuditAsDopriAtRtol1e12
   // Event sequence: same count, same transitions, times within 1e-9 s. The two runs each locate
   // events to 1e-12 s on solutions that agree to ~1e-10 relative (DOPRI's global error at rtol
   // 1e-12 over ~30 periods); a guard's crossing rate of order 1 (scaled) turns that into 1e-10 s.
+  for (std::size_t k = 0; k < std::min(ex.rec.events.size(), ref.rec.events.size()); ++k)
+    if (!(ex.rec.events[k].from == ref.rec.events[k].from) || !(ex.rec.events[k].to == ref.rec.events[k].to) ||
+        std::abs(ex.rec.events[k].t - ref.rec.events[k].t) > 1e-9) {
+      std::printf("first differing event %zu: exponential at %.12f s (%d %d -> %d %d), DOPRI at %.12f s "
+                  "(%d %d -> %d %d)\n", k, ex.rec.events[k].t, static_cast<int>(ex.rec.events[k].from[0]),
+                  static_cast<int>(ex.rec.events[k].from[1]), static_cast<int>(ex.rec.events[k].to[0]),
+                  static_cast<int>(ex.rec.events[k].to[1]), ref.rec.events[k].t,
+                  static_cast<int>(ref.rec.events[k].from[0]), static_cast<int>(ref.rec.events[k].from[1]),
+                  static_cast<int>(ref.rec.events[k].to[0]), static_cast<int>(ref.rec.events[k].to[1]));
+      break;
+    }
   ASSERT_EQ(ex.rec.events.size(), ref.rec.events.size());
   for (std::size_t k = 0; k < ref.rec.events.size(); ++k) {
     EXPECT_EQ(ex.rec.events[k].from, ref.rec.events[k].from) << "event " << k;

@@ -90,6 +90,29 @@ double guard_error(System& sys, const DamperStates& mode, double t, const System
   return affine_error(terms, pred, g);
 }
 
+/// The energy audit's four rates from rhs() against z^T Q_j z (LinearPart::quadrature_forms,
+/// z = (x_L, 1, cos w_k t, sin w_k t)), judged as affine_error against |z|^T |Q_j| |z|.
+double quadrature_error(System& sys, const DamperStates& mode, double t, const System::State& x, const LP& lp) {
+  System::State f;
+  sys.rhs(mode, t, x, f);
+  const Index n = lp.size(), K = static_cast<Index>(lp.omega.size());
+  Eigen::VectorXd z(n + 1 + 2 * K);
+  z.head(n) = x.head(n);
+  z[n] = 1.0;
+  for (Index k = 0; k < K; ++k) {
+    z[n + 1 + 2 * k] = std::cos(lp.omega[static_cast<std::size_t>(k)] * t);
+    z[n + 2 + 2 * k] = std::sin(lp.omega[static_cast<std::size_t>(k)] * t);
+  }
+  EXPECT_EQ(lp.quadrature_forms.size(), 4u);
+  Eigen::VectorXd value(4), terms(4);
+  for (std::size_t j = 0; j < 4; ++j) {
+    const Eigen::MatrixXd& q = lp.quadrature_forms[j];
+    value[static_cast<Index>(j)] = z.dot(q * z);
+    terms[static_cast<Index>(j)] = z.cwiseAbs().dot(q.cwiseAbs() * z.cwiseAbs());
+  }
+  return affine_error(terms, value, f.segment(n, 4));
+}
+
 /// A random state (random_state: blade-sized amplitudes) and time.
 System::State sample(const System& sys, std::mt19937& rng, double& t) {
   std::uniform_real_distribution<double> u(0.0, 0.05);
@@ -141,10 +164,13 @@ TEST(LinearPart, ExactModesReproduceTheRightHandSideAndGuards) {
       EXPECT_LE(rhs_error(sys, c.mode, t, x, lp), kRoundOff);
       ASSERT_TRUE(lp.has_affine_guards());
       EXPECT_LE(guard_error(sys, c.mode, t, x, lp), kRoundOff);
+      // the audit's rates as quadratic forms (closed-form quadratures of ExactLinearStepper)
+      EXPECT_LE(quadrature_error(sys, c.mode, t, x, lp), kRoundOff);
       // and at other times with the same decomposition: b(t) carries the loads' time dependence
       for (double t2 : {0.0137, 0.4, 2.5}) {
         EXPECT_LE(rhs_error(sys, c.mode, t2, x, lp), kRoundOff);
         EXPECT_LE(guard_error(sys, c.mode, t2, x, lp), kRoundOff);
+        EXPECT_LE(quadrature_error(sys, c.mode, t2, x, lp), kRoundOff);
       }
       if (c.moving) {  // X frozen: its columns are zero
         EXPECT_EQ(lp.A.middleCols(sys.contact_offset(), sys.num_dampers()).cwiseAbs().maxCoeff(), 0.0);

@@ -74,14 +74,15 @@ struct Sdof {
 };
 
 // u'' + C u' + K u = Q p(t), K = Q diag(w^2) Q^T, C = Q diag(2 zeta w) Q^T; state (u, u', E) with
-// the quadrature E' = u_0^2.
+// the quadrature E' = u_0^2, given to the stepper as a quadratic form (LinearPart::quadrature_forms)
+// when `forms` is set.
 class LinearScene : public ode_exact_test::Unguarded<Eigen::Matrix<double, 7, 1>> {
  public:
   using Scalar = double;
   using State = Eigen::Matrix<double, 7, 1>;
   using Mode = int;
 
-  LinearScene() {
+  explicit LinearScene(bool forms = false) : with_forms(forms) {
     Q = (Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()) *
          Eigen::AngleAxisd(1.1, Vec3(-1, 0.5, 2).normalized()))
             .toRotationMatrix();
@@ -127,6 +128,11 @@ class LinearScene : public ode_exact_test::Unguarded<Eigen::Matrix<double, 7, 1>
     lp.bs.bottomRows<3>() = Q * Ps;
     lp.exact = true;
     lp.version = 1;
+    lp.quadrature_forms.clear();
+    if (with_forms) {  // E' = z^T Q z, z = (u, u', 1, cos 3t, sin 3t, cos 2t, sin 2t)
+      lp.quadrature_forms.assign(1, Eigen::MatrixXd::Zero(11, 11));
+      lp.quadrature_forms[0](0, 0) = 1.0;
+    }
     return true;
   }
 
@@ -144,6 +150,7 @@ class LinearScene : public ode_exact_test::Unguarded<Eigen::Matrix<double, 7, 1>
   Vec3 P0;
   Eigen::Matrix<double, 3, 2> Pc, Ps;
   Sdof modes[3];
+  bool with_forms = false;
 };
 
 struct SampleLog : stickslip::NullObserver {
@@ -162,21 +169,28 @@ struct SampleLog : stickslip::NullObserver {
 // squaring) and the Taylor series of the samples are accurate to a few units of round-off per
 // step, and ~200 grid steps accumulate < 1e-13; an error of the method (a wrong particular
 // solution, a resonance handled as off-resonance, a missed damping term) is O(1).
-TEST(ExactLinearStepper, LinearSceneMatchesTheClosedFormModalSolution) {
-  LinearScene scene;
+// With `forms` the quadrature is integrated in closed form (Van Loan) on the grid and along the
+// samples (one product per sample once the mode has lasted closed_form_after samples): same
+// tolerances, and the quadrature is also checked at every sample.
+void check_linear_scene(bool forms) {
+  LinearScene scene(forms);
   LinearScene::State x0;
   x0 << 0.1, -0.2, 0.3, 0.5, 0.0, -0.4, 0.0;
   // The quadrature E = int u_0^2 dt against 3-point Gauss-Legendre of the closed form on 20000
-  // panels (error ~ (h w)^6 / 2e6 relative, < 1e-16); tolerance as for the state.
+  // panels (error ~ (h w)^6 / 2e6 relative, < 1e-16); tolerance as for the state. e_at[k]: E at
+  // the sample k (50 panels per output interval 0.05).
   double e_ref = 0;
+  std::vector<double> e_at{0.0};
   const int panels = 20000;
   const double hp = 20.0 / panels, gl[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)},
                gw[3] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
-  for (int i = 0; i < panels; ++i)
+  for (int i = 0; i < panels; ++i) {
     for (int j = 0; j < 3; ++j) {
       const double u0 = scene.exact(x0.head<6>(), hp * (i + 0.5 + 0.5 * gl[j]))[0];
       e_ref += 0.5 * hp * gw[j] * u0 * u0;
     }
+    if ((i + 1) % 50 == 0) e_at.push_back(e_ref);
+  }
   for (double max_step : {std::numeric_limits<double>::infinity(), 0.037, 0.0913}) {
     stickslip::StepperOptions<double> opt;
     opt.output_interval = 0.05;
@@ -195,11 +209,27 @@ TEST(ExactLinearStepper, LinearSceneMatchesTheClosedFormModalSolution) {
     EXPECT_LT((err.array() / scale.array()).maxCoeff(), 1e-12)
         << "max_step " << max_step << ", errors " << err.transpose();
     EXPECT_NEAR(r.x[6] / e_ref, 1.0, 1e-12) << "max_step " << max_step;
-    std::printf("max_step %g: state error %.2e, quadrature error %.2e, steps %ld, matvecs %ld\n",
-                max_step, (err.array() / scale.array()).maxCoeff(), std::abs(r.x[6] / e_ref - 1),
-                r.stats.accepted_steps, stepper.work().matvecs);
-    EXPECT_EQ(stepper.work().propagator_exponentials, 2);  // once per run (one mode)
+    double e_err = 0;
+    for (std::size_t i = 0; i < log.t.size(); ++i)
+      e_err = std::max(e_err, std::abs(log.x[i][6] - e_at[i]) / e_ref);
+    EXPECT_LT(e_err, 1e-12) << "max_step " << max_step;
+    std::printf("forms %d, max_step %g: state error %.2e, quadrature error %.2e (samples %.2e), "
+                "steps %ld, matvecs %ld, exponentials %ld\n",
+                forms ? 1 : 0, max_step, (err.array() / scale.array()).maxCoeff(),
+                std::abs(r.x[6] / e_ref - 1), e_err, r.stats.accepted_steps,
+                stepper.work().matvecs, stepper.work().propagator_exponentials);
+    // Once per run (one mode): the grid ladder (2); with forms also the output interval's Van Loan
+    // block (1 form; 401 samples) and the grid step's where the run has closed_form_after steps.
+    using Stepper = stickslip::ExactLinearStepper<LinearScene>;
+    const long expected = !forms ? 2 : 3 + (r.stats.accepted_steps > Stepper::closed_form_after ? 1 : 0);
+    EXPECT_EQ(stepper.work().propagator_exponentials, expected);
   }
+}
+
+TEST(ExactLinearStepper, LinearSceneMatchesTheClosedFormModalSolution) { check_linear_scene(false); }
+
+TEST(ExactLinearStepper, ClosedFormQuadraturesMatchTheClosedFormModalSolution) {
+  check_linear_scene(true);
 }
 
 }  // namespace

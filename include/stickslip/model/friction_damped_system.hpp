@@ -445,7 +445,9 @@ class FrictionDampedSystem {
   /// CoulombLaw. Otherwise (exact = false) A_m is the fixed-contact form at the frozen X with the
   /// slip coefficients frozen at mu(V) of x (convective terms, slope coupling, the motion of X
   /// and time_function loads left to r_m), and b0 is corrected so that r_m(t, x) = 0. Affine
-  /// guards (the rows of guards(), Gx x_L + g(t)) in exact modes, none otherwise. `version`
+  /// guards (the rows of guards(), Gx x_L + g(t)) in exact modes, none otherwise. With the energy
+  /// audit, an exact mode also gives the audit's four rates as quadratic forms (quadrature_forms:
+  /// external work, viscous and friction dissipation, slope work). `version`
   /// changes when the mode, a frozen X or a frozen slip coefficient changes. Returns false when
   /// the evaluation at (t, x) is not finite. Allocates nothing once lp has the sizes of the mode
   /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
@@ -608,6 +610,19 @@ class FrictionDampedSystem {
           std::find(lp.omega.begin(), lp.omega.end(), abs(l.omega)) == lp.omega.end())
         lp.omega.push_back(abs(l.omega));
     const Index K = static_cast<Index>(lp.omega.size());
+    // The audit's rates as quadratic forms in z = (x_L, 1, cos w_k t, sin w_k t) (exact modes):
+    // the friction forces f and slip velocities V are affine in z, recorded at every probe.
+    const bool forms = exact && options_.energy_audit;
+    const Index nz = P + 1 + 2 * K;
+    if (forms) {
+      lp_fz_.setZero(D_, nz);
+      lp_vz_.setZero(D_, nz);
+    }
+    auto record = [&](Index col, Scalar scale) {
+      if (!forms) return;
+      lp_fz_.col(col) += scale * eval_.f;
+      lp_vz_.col(col) += scale * eval_.V;
+    };
     lp.A.setZero(P, P);
     lp.bc.setZero(P, K);
     lp.bs.setZero(P, K);
@@ -621,6 +636,7 @@ class FrictionDampedSystem {
     lp_xs_.setZero();
     if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = lp_X_;
     frozen_probe(mode, -1, G);
+    record(P, Scalar(1));
     lp.b0 = lp_f_;
     lp.g0 = lp_g_.head(G);
     for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
@@ -628,6 +644,7 @@ class FrictionDampedSystem {
       lp_xs_[j] = Scalar(1);
       frozen_probe(mode, -1, G);
       lp_xs_[j] = Scalar(0);
+      record(j, Scalar(1));
       lp.A.col(j) = lp_f_;
       if (G > 0) lp.Gx.col(j) = lp_g_.head(G);
     }
@@ -638,6 +655,7 @@ class FrictionDampedSystem {
       // F = a sin(w t + phi) + offset = a sin(phi) cos(w t) + a cos(phi) sin(w t) + offset
       const Scalar cosine = load.amplitude * sin(load.phase), sine = load.amplitude * cos(load.phase);
       if (load.omega == Scalar(0)) {
+        record(P, load.offset + cosine);
         lp.b0 += (load.offset + cosine) * lp_f_;
         lp.g0 += (load.offset + cosine) * lp_g_.head(G);
         continue;
@@ -646,6 +664,9 @@ class FrictionDampedSystem {
       lp.g0 += load.offset * lp_g_.head(G);
       const Index k = static_cast<Index>(std::find(lp.omega.begin(), lp.omega.end(), abs(load.omega)) - lp.omega.begin());
       const Scalar s = load.omega < 0 ? -sine : sine;  // sin(-w t + phi) = sin(phi) cos(w t) - cos(phi) sin(w t)
+      record(P, load.offset);
+      record(P + 1 + 2 * k, cosine);
+      record(P + 2 + 2 * k, s);
       lp.bc.col(k) += cosine * lp_f_;
       lp.bs.col(k) += s * lp_f_;
       lp.gc.col(k) += cosine * lp_g_.head(G);
@@ -655,6 +676,36 @@ class FrictionDampedSystem {
     options_.refine_stale_factorisation = refine;
     if (moving_slip) factor_unknowns_ = -1;  // rhs() forms these rows in element space
     cache_valid_ = false;
+    if (forms) audit_forms(P, K, lp);
+  }
+
+  /// The energy audit's rates (rhs) as quadratic forms z^T Q_j z of an exact mode
+  /// (LinearPart::quadrature_forms): W_ext' = sum_l F_l(t) psi_l . q' with F_l in the clock
+  /// components of z, D_visc' = q'^T diag(c) q', D_fric' = -f . V with f = lp_fz_ z and
+  /// V = lp_vz_ z, W_slope' = 0 (a stuck damper has V = 0, an exact slipping one a fixed contact).
+  void audit_forms(Index P, Index K, LinearPart<Scalar>& lp) const {
+    using std::abs;
+    using std::sin;
+    using std::cos;
+    const Index nz = P + 1 + 2 * K;
+    lp.quadrature_forms.resize(4);
+    for (Matrix& q : lp.quadrature_forms) q.setZero(nz, nz);
+    for (Index l = 0; l < static_cast<Index>(loads_.size()); ++l) {
+      const Load& load = loads_[static_cast<std::size_t>(l)];
+      const auto psi = load_psi_.col(l).transpose();
+      const Scalar cosine = load.amplitude * sin(load.phase), sine = load.amplitude * cos(load.phase);
+      if (load.omega == Scalar(0)) {
+        lp.quadrature_forms[0].block(P, n_, 1, n_) += (load.offset + cosine) * psi;
+        continue;
+      }
+      const Index k = static_cast<Index>(std::find(lp.omega.begin(), lp.omega.end(), abs(load.omega)) - lp.omega.begin());
+      const Scalar s = load.omega < 0 ? -sine : sine;
+      lp.quadrature_forms[0].block(P, n_, 1, n_) += load.offset * psi;
+      lp.quadrature_forms[0].block(P + 1 + 2 * k, n_, 1, n_) += cosine * psi;
+      lp.quadrature_forms[0].block(P + 2 + 2 * k, n_, 1, n_) += s * psi;
+    }
+    lp.quadrature_forms[1].diagonal().segment(n_, n_) = modal_damping_.head(n_);
+    lp.quadrature_forms[2].noalias() = -lp_fz_.transpose() * lp_vz_;
   }
 
   /// One probe: the frozen solve at the probe state lp_xs_ with load `load` at unit value (none
@@ -1329,6 +1380,7 @@ class FrictionDampedSystem {
   // call (mode, frozen X and slip coefficients) with its version, the last exact mode's result.
   State lp_xs_;
   Vector lp_f_, lp_b_, lp_X_, lp_mu_, lp_key_X_, lp_key_mu_;
+  Matrix lp_fz_, lp_vz_;  // f and V of an exact mode as maps of z (audit_forms)
   GuardVector lp_g_;
   std::vector<Scalar> lp_preload_;
   Mode lp_mode_;

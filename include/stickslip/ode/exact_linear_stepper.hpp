@@ -37,7 +37,14 @@ namespace stickslip {
 /// propagation is exact to round-off); a mode without oscillation or load frequency is crossed
 /// in one step. States between grid points (events, samples) come from exp(Â tau) y by a scaled
 /// Taylor series. Quadrature components are integrated by 5-point Gauss-Legendre over each grid
-/// step on the exact x_L. Where r_m != 0 (or linear_part returns false, then with Â = 0, i.e.
+/// step on the exact x_L. Once an exact mode has lasted closed_form_after grid steps (or
+/// samples): quadratures given as quadratic forms (LinearPart::quadrature_forms) are integrated
+/// in closed form, x_Q(t + tau) = x_Q(t) + y^T W(tau) y with Van Loan's block exponential;
+/// consecutive output samples come from the previous one by exp(Â h_out); and with affine guards
+/// the stepper takes long steps of 2^j delta (j <= jump_levels) where a bound on every guard's
+/// rate over the step, |g_i'(t + s)| <= (B_j |y(t)|)_i, shows that no guard can reach its trigger.
+/// Affine guards of exact modes are evaluated on the augmented state (g = Ĝ y, g' = Ĝ Â y).
+/// Where r_m != 0 (or linear_part returns false, then with Â = 0, i.e.
 /// plain Dormand-Prince) the Lawson form of Dormand-Prince 5(4) is used with the error control
 /// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
 /// delta in modes with guards; the linear part is refreshed at every accepted step (the system's
@@ -79,9 +86,25 @@ class ExactLinearStepper {
   using GuardVector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   /// Dynamic column vector.
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Dynamic matrix.
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   /// Guard samples per shortest period 2 pi / rate of a mode.
   static constexpr int samples_per_period = 8;
+  /// Grid steps (or output samples) of an exact mode after which the stepper computes the
+  /// propagator of the grid step (or of the output interval) together with the closed-form
+  /// quadrature matrices (Van Loan; a few matrix exponentials of twice the augmented size), and
+  /// from then on uses one product per step (or sample) instead of a Taylor series and a
+  /// Gauss-Legendre rule through rhs. Short modes keep the cheaper set-up (the Van Loan blocks
+  /// cost about as much as a few hundred Gauss-Legendre grid steps of the blade model).
+  static constexpr long closed_form_after = 256;
+  /// Grid steps of an exact mode after which long steps are considered (their set-up, the
+  /// guard-rate bounds over 2^jump_levels grid steps, costs about a thousand grid steps).
+  static constexpr long long_steps_after = 1024;
+  /// Long steps of an exact mode: up to 2^jump_levels grid steps in one product, taken when a
+  /// bound on every guard's rate over the step shows that no guard can reach its trigger (see
+  /// the class comment).
+  static constexpr int jump_levels = 8;
 
   /// Keeps a reference to `system`. Throws std::invalid_argument ("ExactLinearStepper:
   /// options.<name> ...") for options out of range.
@@ -146,12 +169,37 @@ class ExactLinearStepper {
   // Guard rates dg/dt along the solution through (t, x) with x' = xdot.
   void guard_slopes(const Mode& m, Scalar t, const State& x, const State& xdot, GuardVector& s,
                     StepperStats& st);
-  // Quadratures at b from y at a (x_L exact): 5-point Gauss-Legendre.
+  // Quadratures at b from y at a (x_L exact): 5-point Gauss-Legendre on pieces <= delta.
   bool quadrature(const Mode& m, Scalar a, const Vector& ya, Scalar b, Vector& yb,
                   StepperStats& st);
-  // Exact (or exponential) state at tau in [t_, t1] into ys_ / xs_; guards into gt_ and, if
-  // asked, slopes into st_. False when not finite.
-  bool eval_point(const Mode& m, Scalar tau, bool slopes, StepperStats& st);
+  // What eval_point computes beside the state x_L (and the whole state in inexact modes).
+  // kSystemGuards: the guards from System::guards even where Ĝ y would do (root finding and the
+  // located state: the transition then sees the crossing the system itself computes).
+  enum Need : unsigned { kGuards = 1u, kSlopes = 2u, kQuadratures = 4u, kSystemGuards = 8u };
+  // Exact (or exponential) state at tau in [t_, t1] into ys_ / xs_; with kGuards the guards into
+  // gt_, with kSlopes also their slopes into st_; with kQuadratures (exact modes) the quadratures
+  // too (else they keep their values at t_: guards never read them). False when not finite.
+  bool eval_point(const Mode& m, Scalar tau, unsigned need, StepperStats& st);
+  // Exact modes with affine guards: g = Ĝ y and g' = Ĝ Â y on the augmented state (no system
+  // call).
+  bool closed_form_guards() const noexcept { return exact_ && affine_; }
+  // x_Q(y1) = x_Q(y) + y^T W_j y with the stacked W of van_loan (exact modes with
+  // quadrature_forms).
+  void add_quadratures(const Vector& y, const Matrix& w, Vector& y1) {
+    wy_.noalias() = w * y;
+    ++work_.matvecs;
+    const Eigen::Index d = flow_.dim(), n = lp_.size();
+    for (Eigen::Index j = 0; j < nq_; ++j) y1[n + j] = y[n + j] + y.dot(wy_.segment(j * d, d));
+  }
+  // Grid propagator of an exact mode with closed-form quadratures, once the mode has lasted
+  // closed_form_after grid steps; true when w_grid_ is ready.
+  bool grid_quadrature_ready();
+  // Long steps: the propagators, quadrature matrices and guard-rate bounds of H_j = 2^j delta
+  // (j = 1 .. jump_levels), once per mode (after long_steps_after grid steps); the longest H_j
+  // (0: none) with no guard able to reach its trigger from (t_, y_) and t_ + H_j <= t_end.
+  bool jumps_possible() const;
+  void prepare_jumps();
+  int choose_jump(Scalar t_end);
 
   // ---- events ------------------------------------------------------------------------------
   struct Bracket {
@@ -187,6 +235,20 @@ class ExactLinearStepper {
   Eigen::Index nx_ = 0, nq_ = 0;
   long next_sample_ = 0;
   bool linear_ = false, exact_ = false, affine_ = false, guarded_ = false;
+  // Exact modes: affine guards on y (ghat_, gdot_ = ghat_ Â), closed-form quadratures (forms_:
+  // the mode gives them; w_grid_ for the grid step; phi_out_, w_out_ for the output interval),
+  // the sample chain (y_chain_ = the state at sample index k_chain_, same mode) and the mode's
+  // step and sample counts.
+  Matrix ghat_, gdot_, w_grid_, phi_grid_, phi_out_, w_out_;
+  std::vector<Matrix> forms_seen_;
+  Vector wy_, y_chain_;
+  long k_chain_ = -1, mode_steps_ = 0, mode_samples_ = 0;
+  Scalar phi_grid_delta_ = 0;
+  std::vector<Matrix> jump_phi_, jump_w_, jump_bound_;
+  Matrix jump_r_, jump_rmax_, jump_e_, jump_tmp_;
+  Vector absy_, bound_, yp_;
+  bool jumps_valid_ = false;
+  bool forms_ = false, w_grid_valid_ = false, out_valid_ = false;
 };
 
 // ------------------------------------------------------------------------------------------
@@ -209,6 +271,15 @@ void ExactLinearStepper<System>::check_linear_part(const Mode& m) const {
       detail::throw_invalid(where, "affine guards must be num_guards x size() (Gx), "
                                    "num_guards (g0), num_guards x omega.size() (gc, gs)",
                             lp_.Gx.rows());
+  }
+  if (lp_.exact && lp_.has_quadrature_forms()) {
+    const auto nf = static_cast<Eigen::Index>(lp_.quadrature_forms.size());
+    if (nf != nx_ - n)
+      detail::throw_invalid(where, "quadrature_forms must hold one matrix per quadrature", nf);
+    for (const auto& q : lp_.quadrature_forms)
+      if (q.rows() != n + 1 + 2 * nk || q.cols() != q.rows())
+        detail::throw_invalid(where, "quadrature_forms must be square of size() + 1 + 2 K",
+                              q.rows());
   }
 }
 
@@ -241,14 +312,136 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
   // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
   flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_);
   lawson_.initialize(flow_.dim());
-  for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_}) v->resize(flow_.dim());
+  for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_}) v->resize(flow_.dim());
+  // Closed-form pieces of an exact mode: dropped when Â, the grid step or the forms changed.
+  const bool forms = exact_ && lp_.has_quadrature_forms();
+  bool forms_changed = forms != forms_;
+  if (forms && !forms_changed) {
+    forms_changed = forms_seen_.size() != lp_.quadrature_forms.size();
+    for (std::size_t j = 0; !forms_changed && j < forms_seen_.size(); ++j)
+      forms_changed = forms_seen_[j].rows() != lp_.quadrature_forms[j].rows() ||
+                      forms_seen_[j] != lp_.quadrature_forms[j];
+  }
+  if (forms && forms_changed) forms_seen_ = lp_.quadrature_forms;
+  forms_ = forms;
+  if (changed || forms_changed) out_valid_ = false;
+  if (changed || forms_changed || !(phi_grid_delta_ == delta_)) {
+    w_grid_valid_ = false;
+    jumps_valid_ = false;
+  }
+  if (closed_form_guards()) {
+    const Eigen::Index n = lp_.size(), ng = lp_.Gx.rows();
+    ghat_.setZero(ng, flow_.dim());
+    ghat_.leftCols(n) = lp_.Gx;
+    ghat_.col(nx_) = lp_.g0;
+    for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(lp_.omega.size()); ++k) {
+      ghat_.col(nx_ + 1 + 2 * k) = lp_.gc.col(k);
+      ghat_.col(nx_ + 2 + 2 * k) = lp_.gs.col(k);
+    }
+    gdot_.noalias() = ghat_ * flow_.generator();
+  }
   if (!exact_ && (force || changed)) return remainder(m, t, y_, r_, st);
   return true;
 }
 
 template <class System>
+bool ExactLinearStepper<System>::grid_quadrature_ready() {
+  if (!forms_ || mode_steps_ < closed_form_after || !std::isfinite(delta_)) return false;
+  if (!w_grid_valid_) {
+    flow_.van_loan(delta_, lp_.quadrature_forms, phi_grid_, w_grid_, work_);
+    phi_grid_delta_ = delta_;
+    w_grid_valid_ = true;
+  }
+  return true;
+}
+
+template <class System>
+bool ExactLinearStepper<System>::jumps_possible() const {
+  return exact_ && (!guarded_ || closed_form_guards()) && (forms_ || nq_ == 0) &&
+         flow_.has_ladder() && std::isfinite(delta_) && mode_steps_ >= long_steps_after;
+}
+
+template <class System>
+void ExactLinearStepper<System>::prepare_jumps() {
+  const auto L = static_cast<std::size_t>(jump_levels);
+  const Eigen::Index d = flow_.dim();
+  if (forms_ || nq_ == 0) grid_quadrature_ready();
+  jump_phi_.resize(L);
+  jump_w_.resize(L);
+  jump_bound_.resize(L);
+  // Phi(2 tau) = Phi(tau)^2, W(2 tau) = W(tau) + Phi(tau)^T W(tau) Phi(tau) (per form).
+  const Matrix* phi = &flow_.propagator();
+  const Matrix* w = &w_grid_;
+  for (std::size_t j = 0; j < L; ++j) {
+    jump_phi_[j].noalias() = (*phi) * (*phi);
+    jump_w_[j] = *w;
+    for (Eigen::Index q = 0; q < nq_; ++q) {
+      jump_tmp_.noalias() = w->middleRows(q * d, d) * (*phi);
+      jump_w_[j].middleRows(q * d, d).noalias() += phi->transpose() * jump_tmp_;
+    }
+    phi = &jump_phi_[j];
+    w = &jump_w_[j];
+  }
+  // Guard-rate bounds: g_i'(t + s) = r_i(s) y(t) with r(s) = Ĝ Â exp(Â s). On [m sigma,
+  // (m + 1) sigma], |g_i'| = |r_i(m sigma) exp(Â u) y(t)| <= |r_i(m sigma)| exp(|Â| u) |y(t)|
+  // (entrywise: |exp(Â u)| <= exp(|Â| u)), so B_j = max_{m sigma < H_j} |r(m sigma)| exp(|Â| sigma)
+  // bounds |g'| over [0, H_j] by B_j |y(t)|. sigma = delta / 8.
+  const Scalar sigma = delta_ / Scalar(8);
+  if (guarded_) {
+    jump_tmp_ = flow_.generator() * sigma;
+    const Matrix phi_sigma = jump_tmp_.exp();
+    jump_tmp_ = flow_.generator().cwiseAbs() * sigma;
+    jump_e_ = jump_tmp_.exp();
+    jump_r_ = gdot_;
+    jump_rmax_ = jump_r_.cwiseAbs();
+    long m = 1;
+    for (std::size_t j = 0; j < L; ++j) {
+      const long upto = 8L << (j + 1);  // H_j / sigma
+      for (; m < upto; ++m) {
+        jump_tmp_.noalias() = jump_r_ * phi_sigma;
+        jump_r_.swap(jump_tmp_);
+        jump_rmax_ = jump_rmax_.cwiseMax(jump_r_.cwiseAbs());
+      }
+      jump_bound_[j].noalias() = jump_rmax_ * jump_e_;
+    }
+    work_.propagator_exponentials += 2;
+  }
+  jumps_valid_ = true;
+}
+
+template <class System>
+int ExactLinearStepper<System>::choose_jump(Scalar t_end) {
+  if (!jumps_possible()) return 0;
+  if (!jumps_valid_) prepare_jumps();
+  // A sample inside the step must come from the sample chain (or be the step's end): the first
+  // one of a mode is not taken across a long step.
+  const bool samples = opt_.output_interval > 0;
+  const Scalar next = t0_ + static_cast<Scalar>(next_sample_) * opt_.output_interval;
+  absy_ = y_.cwiseAbs();
+  for (int j = jump_levels; j >= 1; --j) {
+    const Scalar H = std::ldexp(delta_, j);
+    if (!(t_ + H < t_end)) continue;
+    if (samples && k_chain_ < 0 && next < t_ + H) continue;
+    if (guarded_) {
+      bound_.noalias() = jump_bound_[static_cast<std::size_t>(j - 1)] * absy_;
+      bool clear = true;
+      // Margin 1.1: round-off of the guard values and of the bound itself.
+      for (Eigen::Index i = 0; clear && i < ga_.size(); ++i)
+        clear = !monitor_.disarmed(i) &&
+                monitor_.distance(i, ga_[i]) > Scalar(1.1) * H * bound_[i];
+      if (!clear) continue;
+    }
+    return j;
+  }
+  return 0;
+}
+
+template <class System>
 bool ExactLinearStepper<System>::start_mode(const Mode& m, Scalar t, StepperStats& st) {
   if (!refresh_linear_part(m, t, true, st)) return false;
+  k_chain_ = -1;
+  mode_steps_ = 0;
+  mode_samples_ = 0;
   const Eigen::Index ng = sys_.num_guards(m);
   if (ga_.size() != ng)
     for (GuardVector* g : {&ga_, &gb_, &gt_, &sa_, &sb_, &st_, &gp_, &gm_, &roots_}) g->resize(ng);
@@ -257,7 +450,9 @@ bool ExactLinearStepper<System>::start_mode(const Mode& m, Scalar t, StepperStat
   if (!detail::all_finite(ga_)) return false;
   monitor_.start_mode(ga_, [&](Eigen::Index i) { return sys_.guard_direction(m, i); },
                       opt_.guard_zero_tolerance);
-  if (guarded_) {
+  if (guarded_ && closed_form_guards()) {
+    sa_.noalias() = gdot_ * y_;
+  } else if (guarded_) {
     if (!derivative(m, t, y_, x_, xd_, st)) return false;
     guard_slopes(m, t, x_, xd_, sa_, st);
   }
@@ -301,31 +496,48 @@ bool ExactLinearStepper<System>::quadrature(const Mode& m, Scalar a, const Vecto
   static constexpr std::array<double, 5> weight{0.2369268850561891, 0.4786286704993665,
                                                 0.5688888888888889, 0.4786286704993665,
                                                 0.2369268850561891};
-  const Scalar half = (b - a) / Scalar(2);
+  // Composite over pieces no longer than the grid step (the rule's accuracy is set for those).
+  using std::ceil;
+  const Scalar pieces_real =
+      std::isfinite(delta_) ? std::max(Scalar(1), ceil((b - a) / delta_ - Scalar(1e-9))) : Scalar(1);
+  const auto pieces = static_cast<long>(pieces_real);
+  const Scalar half = (b - a) / (Scalar(2) * pieces_real);
   const Eigen::Index n = lp_.size();
   auto acc = yb.segment(n, nq_);
   acc.setZero();
-  for (std::size_t j = 0; j < node.size(); ++j) {
-    const Scalar tau = a + half * (Scalar(1) + static_cast<Scalar>(node[j]));
-    yq_ = ya;
-    flow_.expv(tau - a, yq_, work_);
-    xr_ = yq_.head(nx_);
-    sys_.rhs(m, tau, xr_, fr_);
-    ++st.rhs_evaluations;
-    acc += static_cast<Scalar>(weight[j]) * fr_.tail(nq_);
+  yp_ = ya;
+  for (long p = 0; p < pieces; ++p) {
+    const Scalar ap = a + Scalar(2) * half * static_cast<Scalar>(p);
+    if (p > 0) flow_.expv(Scalar(2) * half, yp_, work_);
+    for (std::size_t j = 0; j < node.size(); ++j) {
+      const Scalar tau = ap + half * (Scalar(1) + static_cast<Scalar>(node[j]));
+      yq_ = yp_;
+      flow_.expv(tau - ap, yq_, work_);
+      xr_ = yq_.head(nx_);
+      sys_.rhs(m, tau, xr_, fr_);
+      ++st.rhs_evaluations;
+      acc += static_cast<Scalar>(weight[j]) * fr_.tail(nq_);
+    }
   }
   acc = ya.segment(n, nq_) + half * acc;
   return detail::all_finite(acc);
 }
 
 template <class System>
-bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, bool slopes,
+bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, unsigned need,
                                             StepperStats& st) {
+  const bool slopes = (need & kSlopes) != 0;
   if (exact_) {
     ys_ = y_;
     flow_.expv(tau - t_, ys_, work_);
     flow_.set_clock(tau, ys_);
-    if (!quadrature(m, t_, y_, tau, ys_, st)) return false;
+    if ((need & kQuadratures) != 0 && !quadrature(m, t_, y_, tau, ys_, st)) return false;
+    if (closed_form_guards() && (need & (kGuards | kSlopes)) != 0 && (need & kSystemGuards) == 0) {
+      xs_ = ys_.head(nx_);
+      gt_.noalias() = ghat_ * ys_;
+      if (slopes) st_.noalias() = gdot_ * ys_;
+      return detail::all_finite(xs_) && detail::all_finite(gt_);
+    }
   } else {
     const Scalar err = lawson_.step(
         flow_, [&](Scalar tt, const Vector& y, Vector& out) { return remainder(m, tt, y, out, st); },
@@ -334,6 +546,7 @@ bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, bool slop
   }
   xs_ = ys_.head(nx_);
   if (!detail::all_finite(xs_)) return false;
+  if ((need & (kGuards | kSlopes)) == 0) return true;
   eval_guards(m, tau, xs_, gt_, st);
   if (slopes) {
     if (exact_) {
@@ -396,7 +609,7 @@ bool ExactLinearStepper<System>::grazing_bracket(const Mode& m, Eigen::Index i, 
     if (!(p_min < Scalar(0.5) * std::min(nd.da, nd.db))) continue;
     const Scalar tau = nd.a + s_min * H;
     ++work_.grazing_refinements;
-    if (!eval_point(m, tau, true, st)) continue;
+    if (!eval_point(m, tau, kGuards | kSlopes, st)) continue;
     const Scalar dt = monitor_.distance(i, gt_[i]);
     if (dt < 0) {
       out = {nd.a, nd.da, tau, dt};
@@ -433,7 +646,8 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
     }
     if (!found) continue;
     auto phi = [&](Scalar tc) {
-      if (!eval_point(m, tc, false, st)) return -std::numeric_limits<Scalar>::infinity();
+      if (!eval_point(m, tc, kGuards | kSystemGuards, st))
+        return -std::numeric_limits<Scalar>::infinity();
       return monitor_.distance(i, gt_[i]);
     };
     const auto root = detail::illinois_root(phi, br.lo, br.dlo, br.hi, br.dhi, tol);
@@ -444,16 +658,21 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
     }
   }
   if (first_guard < 0) return false;
-  triggered_.clear();
-  for (Eigen::Index i = 0; i < ng; ++i)
-    if (roots_[i] <= first + tol) triggered_.push_back(i);
   te_ = first;
   if (first >= t1) {
     xe_ = x1_;
+    eval_guards(m, t1, xe_, gt_, st);
   } else {
-    eval_point(m, first, false, st);
+    eval_point(m, first, kQuadratures | kGuards | kSystemGuards, st);
     xe_ = xs_;
   }
+  // Fired (as HybridStepper): every guard crossed at the handed state, and every guard whose root
+  // lies within the event time tolerance of the first one (guards that cross together, such as
+  // those of two mirror-image contacts, fire together although round-off leaves one of them a
+  // hair short of zero).
+  triggered_.clear();
+  for (Eigen::Index i = 0; i < ng; ++i)
+    if (monitor_.crossed(i, gt_[i]) || roots_[i] <= first + tol) triggered_.push_back(i);
   return true;
 }
 
@@ -467,12 +686,36 @@ bool ExactLinearStepper<System>::emit_samples(Observer& obs, const Mode& m, Scal
     if (ts > upto) return true;
     ++next_sample_;
     if (ts < t_) continue;
+    const long k = next_sample_ - 1;
+    const Vector* ysample = nullptr;  // the augmented sample (exact modes: the chain's next link)
     if (ts == t_) {
       xs_ = x_;
+      ysample = &y_;
     } else if (ts == t1) {
       xs_ = x1_;
-    } else if (!eval_point(m, ts, false, st)) {
+      ysample = &y1_;
+    } else if (exact_ && (forms_ || nq_ == 0) && k_chain_ == k - 1 &&
+               (mode_samples_ >= closed_form_after || mode_steps_ >= closed_form_after)) {
+      // One interval on from the previous sample of this mode: y(ts) = exp(Â h_out) y(ts - h_out).
+      if (!out_valid_) {
+        flow_.van_loan(opt_.output_interval, lp_.quadrature_forms, phi_out_, w_out_, work_);
+        out_valid_ = true;
+      }
+      ys_.noalias() = phi_out_ * y_chain_;
+      ++work_.matvecs;
+      if (forms_) add_quadratures(y_chain_, w_out_, ys_);
+      flow_.set_clock(ts, ys_);
+      xs_ = ys_.head(nx_);
+      ysample = &ys_;
+    } else if (!eval_point(m, ts, kQuadratures, st)) {
       xs_.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    } else {
+      ysample = &ys_;
+    }
+    if (exact_ && ysample != nullptr) {
+      y_chain_ = *ysample;
+      k_chain_ = k;
+      ++mode_samples_;
     }
     if (!obs.on_sample(ts, xs_, m)) return false;
   }
@@ -507,7 +750,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
 
   // Step of the exponential method (inexact modes); carried across events.
   Scalar h = opt_.initial_step > 0 ? opt_.initial_step : Scalar(1e-3);
-  bool after_reject = false;
+  bool after_reject = false, jumped = false;
   long attempts = 0;
   using std::pow;
 
@@ -518,6 +761,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
                         detail::at_time(t_));
     ++attempts;
     Scalar t1 = 0, err = 0;
+    jumped = false;
     if (exact_) {
       Scalar hs = delta_;
       t1 = t_ + hs;
@@ -525,17 +769,33 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
         t1 = t_end;
         hs = t_end - t_;
       }
-      if (hs == delta_ && flow_.has_ladder()) {
+      const int level = hs == delta_ ? choose_jump(t_end) : 0;
+      const bool grid = hs == delta_ && flow_.has_ladder();
+      if (level > 0) {
+        const auto j = static_cast<std::size_t>(level - 1);
+        t1 = t_ + std::ldexp(delta_, level);
+        y1_.noalias() = jump_phi_[j] * y_;
+        ++work_.matvecs;
+        flow_.set_clock(t1, y1_);
+        if (nq_ > 0) add_quadratures(y_, jump_w_[j], y1_);
+        ++work_.long_steps;
+        jumped = true;
+      } else if (grid) {
         y1_.noalias() = flow_.propagator() * y_;
         ++work_.matvecs;
       } else {
         y1_ = y_;
         flow_.expv(hs, y1_, work_);
       }
-      flow_.set_clock(t1, y1_);
-      if (!quadrature(mode, t_, y_, t1, y1_, st))
-        return finish(r, Status::NonFiniteState, t_, x_, mode,
-                      "quadrature right-hand side not finite " + detail::at_time(t_));
+      if (!jumped) {
+        flow_.set_clock(t1, y1_);
+        if (grid && grid_quadrature_ready())
+          add_quadratures(y_, w_grid_, y1_);
+        else if (!quadrature(mode, t_, y_, t1, y1_, st))
+          return finish(r, Status::NonFiniteState, t_, x_, mode,
+                        "quadrature right-hand side not finite " + detail::at_time(t_));
+      }
+      ++mode_steps_;
     } else {
       h = std::min({h, opt_.max_step, guarded_ ? delta_ : opt_.max_step});
       t1 = t_ + h;
@@ -572,7 +832,16 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
     else ++work_.exponential_steps;
 
     bool event = false;
-    if (guarded_) {
+    if (guarded_ && closed_form_guards()) {
+      gb_.noalias() = ghat_ * y1_;
+      sb_.noalias() = gdot_ * y1_;
+      work_.matvecs += 2;
+      if (!detail::all_finite(gb_) || !detail::all_finite(sb_))
+        return finish(r, Status::NonFiniteState, t1, x1_, mode,
+                      "guards not finite " + detail::at_time(t1));
+      // A long step has no root by its bound (the search runs only if round-off says otherwise).
+      event = (!jumped || monitor_.any_crossed(gb_)) && find_event(mode, t1, st);
+    } else if (guarded_) {
       eval_guards(mode, t1, x1_, gb_, st);
       if (exact_) {
         if (!derivative(mode, t1, y1_, x1_, xd_, st))

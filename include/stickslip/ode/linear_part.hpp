@@ -8,7 +8,8 @@
 /// one step of an exponential method), b_m a sum of constant and harmonic terms and r_m the
 /// remainder, identically zero where the mode is exactly linear (`exact`). Components of x past
 /// `size` are *quadratures*: their derivative depends on (t, x_L) only and never feeds back (an
-/// energy audit, say); steppers obtain it from `rhs`.
+/// energy audit, say); steppers obtain it from `rhs`, or, where an exact mode gives their rates
+/// as quadratic forms (`quadrature_forms`), integrate them in closed form.
 ///
 /// A system opts in with
 ///
@@ -61,10 +62,19 @@ struct LinearPart {
   Matrix gc;   ///< cosine coefficients of the affine guards (rows x K)
   Matrix gs;   ///< sine coefficients of the affine guards (rows x K)
 
+  /// Optional quadratic forms of the quadrature rates in an exact mode, one per quadrature or none
+  /// (empty): x_Q[j]' = z^T Q_j z with Q_j = quadrature_forms[j] (square, size() + 1 + 2K; need
+  /// not be symmetric) and z = (x_L, 1, cos w_1 t, sin w_1 t, ..., cos w_K t, sin w_K t). Lets a
+  /// method integrate the quadratures exactly (Van Loan's block exponential) instead of by a
+  /// quadrature rule through rhs. Ignored where `exact` is false.
+  std::vector<Matrix> quadrature_forms;
+
   /// Number of linear components.
   Eigen::Index size() const noexcept { return A.rows(); }
   /// True when the affine guards are given.
   bool has_affine_guards() const noexcept { return Gx.size() > 0; }
+  /// True when the quadrature rates are given as quadratic forms.
+  bool has_quadrature_forms() const noexcept { return !quadrature_forms.empty(); }
 
   /// b_m(t) into out (size()); no allocation once out is sized.
   template <class Out>

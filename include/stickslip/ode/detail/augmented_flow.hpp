@@ -37,6 +37,7 @@ struct ExactStepperStats {
   long eigen_decompositions = 0;  ///< eigenvalue computations of A_m (sampling rate)
   long linear_part_calls = 0;    ///< calls of System::linear_part
   long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
+  long long_steps = 0;           ///< exact steps of several grid steps (guard-rate bound)
 };
 
 namespace detail {
@@ -162,6 +163,42 @@ class AugmentedFlow {
     ladder_k_ = K;
   }
 
+  /// Phi = exp(Â tau) and, for quadratic forms Q_j of the quadrature rates (LinearPart::
+  /// quadrature_forms, in z = (x_L, clock); none: w empty), the stacked
+  /// W_j = int_0^tau exp(Â^T s) Q̂_j exp(Â s) ds (rows j dim .. (j + 1) dim of w, Q̂_j = Q_j placed
+  /// at the x_L and clock rows and columns of y), so that x_Q[j](t + tau) = x_Q[j](t) + y^T W_j y
+  /// for y = y(t). Van Loan's block exponential (IEEE Trans. Automat. Control 23, 1978):
+  /// exp([[-Â^T, Q̂_j], [0, Â]] tau) = [[exp(-Â^T tau), exp(-Â^T tau) W_j], [0, Phi]].
+  void van_loan(Scalar tau, const std::vector<Matrix>& forms, Matrix& phi, Matrix& w,
+                ExactStepperStats& st) {
+    const Eigen::Index d = dim(), n = n_, c = d - nx_;
+    const auto nq = static_cast<Eigen::Index>(forms.size());
+    w.setZero(nq * d, d);
+    if (nq == 0) {
+      build_ = a_ * tau;
+      phi = build_.exp();
+      ++st.propagator_exponentials;
+      return;
+    }
+    for (Eigen::Index j = 0; j < nq; ++j) {
+      const Matrix& q = forms[static_cast<std::size_t>(j)];
+      STICKSLIP_ASSERT(q.rows() == n + c && q.cols() == n + c);
+      big_.setZero(2 * d, 2 * d);
+      big_.topLeftCorner(d, d) = -tau * a_.transpose();
+      big_.bottomRightCorner(d, d) = tau * a_;
+      auto qh = big_.topRightCorner(d, d);
+      qh.topLeftCorner(n, n) = tau * q.topLeftCorner(n, n);
+      qh.block(0, nx_, n, c) = tau * q.topRightCorner(n, c);
+      qh.block(nx_, 0, c, n) = tau * q.bottomLeftCorner(c, n);
+      qh.bottomRightCorner(c, c) = tau * q.bottomRightCorner(c, c);
+      big_exp_ = big_.exp();
+      ++st.propagator_exponentials;
+      if (j == 0) phi = big_exp_.bottomRightCorner(d, d);
+      w.middleRows(j * d, d).noalias() =
+          big_exp_.bottomRightCorner(d, d).transpose() * big_exp_.topRightCorner(d, d);
+    }
+  }
+
   /// True when prepare() built a ladder (Â != 0 and a finite base).
   bool has_ladder() const noexcept { return ladder_k_ >= 0; }
 
@@ -219,7 +256,7 @@ class AugmentedFlow {
     }
   }
 
-  Matrix a_, build_;
+  Matrix a_, build_, big_, big_exp_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;
   std::vector<Scalar> omega_;
