@@ -9,3 +9,4 @@
 #include "stickslip/contact.hpp"
 #include "stickslip/ode.hpp"
 #include "stickslip/model.hpp"
+#include "stickslip/steady_state.hpp"
