@@ -80,7 +80,8 @@ struct PeriodicOrbit {
 /// over the periodic components P (options.periodic; the others keep their start values), by
 /// Newton's method with the Jacobian [M_PP - I] (autonomous: bordered by f_P(x(T)) and the phase
 /// row f_P(x0_k)^T: the correction is orthogonal to the flow at the current iterate). M is the
-/// monodromy (options.monodromy). The start mode is kept: the orbit must return to it at
+/// monodromy (options.monodromy); the status is SingularJacobian when 1 / |J^-1| (estimated by
+/// the LU's rcond) is below 1000 options.stepper.rtol. The start mode is kept: the orbit must return to it at
 /// t0 + T. Every outcome is in the orbit's status; caller errors throw std::invalid_argument.
 template <class System>
 class Shooting {
@@ -249,7 +250,10 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
       rhs[p] = 0;
     }
     const Eigen::FullPivLU<Matrix> lu(J);
-    if (!lu.isInvertible()) {
+    // 1 / |J^-1|_1 (estimated) below 1000 rtol: a multiplier closer to 1 than the monodromy
+    // resolves (the entries of M - I can all be round-off, which a relative test would accept).
+    const Scalar inverse_norm_bound = lu.rcond() * J.cwiseAbs().colwise().sum().maxCoeff();
+    if (!lu.isInvertible() || !(inverse_norm_bound > Scalar(1000) * opt_.stepper.rtol)) {
       failed.status = ShootingStatus::SingularJacobian;
       failed.message = "the Newton matrix is singular at iteration " + std::to_string(it) +
                        " (residual " + detail::format_value(res) +

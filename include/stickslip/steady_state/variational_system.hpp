@@ -3,6 +3,7 @@
 /// \brief VariationalSystem: a hybrid system together with its variational equations, whose
 /// sensitivity matrix jumps by the saltation matrix at every event.
 
+#include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/hybrid_system.hpp>
 #include <stickslip/ode/rosenbrock23.hpp>
 
