@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/LU>
+#include <Eigen/QR>
 
 #include <cmath>
 #include <cstdint>
@@ -80,8 +81,10 @@ struct PeriodicOrbit {
 /// over the periodic components P (options.periodic; the others keep their start values), by
 /// Newton's method with the Jacobian [M_PP - I] (autonomous: bordered by f_P(x(T)) and the phase
 /// row f_P(x0_k)^T: the correction is orthogonal to the flow at the current iterate). M is the
-/// monodromy (options.monodromy); the status is SingularJacobian when 1 / |J^-1| (estimated by
-/// the LU's rcond) is below 1000 options.stepper.rtol. The start mode is kept: the orbit must return to it at
+/// monodromy (options.monodromy). When J is singular to the monodromy's accuracy (1 / |J^-1|,
+/// estimated by the LU's rcond, below 1000 options.stepper.rtol) the step is the minimum-norm
+/// least-squares one: a family of orbits (a damper stuck all period) is crossed the least; the
+/// status is SingularJacobian when the residual is not in J's range. The start mode is kept: the orbit must return to it at
 /// t0 + T. Every outcome is in the orbit's status; caller errors throw std::invalid_argument.
 template <class System>
 class Shooting {
@@ -154,10 +157,34 @@ class Shooting {
 
  private:
   Orbit solve(const Mode& mode, Scalar t0, const State& x0, Scalar period, bool autonomous);
+  // The Newton step J dy = rhs; false when J is singular and rhs is not in its range.
+  bool newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const;
 
   System& sys_;
   ShootingOptions<Scalar> opt_;
 };
+
+template <class System>
+bool Shooting<System>::newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const {
+  const Scalar floor = Scalar(1000) * opt_.stepper.rtol;
+  const Eigen::FullPivLU<Matrix> lu(J);
+  // 1 / |J^-1|_1 (estimated by rcond) above 1000 rtol: regular. (A relative test is not enough:
+  // the entries of M - I can all be round-off.)
+  if (lu.isInvertible() && lu.rcond() * J.cwiseAbs().colwise().sum().maxCoeff() > floor) {
+    dy = lu.solve(rhs);
+    return true;
+  }
+  // Singular to the accuracy of M: the minimum-norm least-squares step, pivots below 1000 rtol
+  // dropped. A family of orbits (e.g. a damper stuck all period: any stuck offset repeats)
+  // leaves the residual in the range of J and the step moves across the family the least;
+  // a residual outside the range (resonance without damping) has no Newton step.
+  Eigen::CompleteOrthogonalDecomposition<Matrix> cod(J);
+  const Scalar largest = J.cwiseAbs().maxCoeff();
+  cod.setThreshold(largest > floor ? floor / largest : Scalar(1));
+  dy = cod.solve(rhs);
+  return detail::all_finite(dy) &&
+         (J * dy - rhs).cwiseAbs().maxCoeff() <= Scalar(0.5) * rhs.cwiseAbs().maxCoeff();
+}
 
 template <class System>
 auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode, Scalar t0,
@@ -249,19 +276,14 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
       }
       rhs[p] = 0;
     }
-    const Eigen::FullPivLU<Matrix> lu(J);
-    // 1 / |J^-1|_1 (estimated) below 1000 rtol: a multiplier closer to 1 than the monodromy
-    // resolves (the entries of M - I can all be round-off, which a relative test would accept).
-    const Scalar inverse_norm_bound = lu.rcond() * J.cwiseAbs().colwise().sum().maxCoeff();
-    if (!lu.isInvertible() || !(inverse_norm_bound > Scalar(1000) * opt_.stepper.rtol)) {
+    if (!newton_step(J, rhs, dy)) {
       failed.status = ShootingStatus::SingularJacobian;
       failed.message = "the Newton matrix is singular at iteration " + std::to_string(it) +
                        " (residual " + detail::format_value(res) +
-                       "): a Floquet multiplier is 1 (a fold, or an undamped system whose "
-                       "periodic orbits are not isolated)";
+                       ", not in its range): a Floquet multiplier is 1 (a fold, or an undamped "
+                       "system whose periodic orbits are not isolated)";
       return failed;
     }
-    dy = lu.solve(rhs);
     // Backtracking: the full step unless it does not lower the residual (a switch crossed the
     // ends of the period, or the period went out of range); halve it down to 1/32, then take it.
     for (Scalar lambda = 1;; lambda /= 2) {
