@@ -10,3 +10,4 @@
 #include "stickslip/ode.hpp"
 #include "stickslip/model.hpp"
 #include "stickslip/sweep.hpp"
+#include "stickslip/steady_state.hpp"

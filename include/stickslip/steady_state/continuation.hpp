@@ -1,0 +1,343 @@
+#pragma once
+/// \file continuation.hpp
+/// \brief Continuation: a branch of forced periodic orbits followed in a scalar parameter by
+/// pseudo-arclength continuation (through folds), with stability along the branch.
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/steady_state/shooting.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+/// Options of Continuation (the orbit tolerances are those of ShootingOptions).
+template <class Scalar>
+struct ContinuationOptions {
+  Scalar parameter_min = 0;  ///< the branch ends when the parameter leaves [parameter_min, parameter_max]
+  Scalar parameter_max = 1;  ///< upper end of the parameter range
+  Scalar initial_step = Scalar(0.01);  ///< first arclength step (in the norm of (x_P, p))
+  Scalar min_step = Scalar(1e-6);      ///< smallest arclength step before giving up
+  Scalar max_step = Scalar(0.1);       ///< largest arclength step
+  int max_points = 200;                ///< points computed at most (the start included)
+  int max_corrector_iterations = 8;    ///< Newton iterations of the corrector per step
+  int fast_iterations = 3;  ///< converged in at most this many: the next step grows by `growth`
+  Scalar growth = Scalar(1.5);  ///< step growth after a fast corrector (a failure halves the step)
+  /// Sign of the first parameter step: +1 towards parameter_max, -1 towards parameter_min.
+  int direction = 1;
+
+  /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range.
+  void validate(const std::string& where) const {
+    detail::require_finite(where, "options.parameter_min", parameter_min);
+    detail::require_finite(where, "options.parameter_max", parameter_max);
+    if (!(parameter_min < parameter_max))
+      detail::throw_invalid(where, "options.parameter_max must be > options.parameter_min",
+                            parameter_max);
+    detail::require_positive(where, "options.min_step", min_step);
+    detail::require_positive(where, "options.max_step", max_step);
+    if (!(initial_step >= min_step && initial_step <= max_step))
+      detail::throw_invalid(where, "options.initial_step must be in [min_step, max_step]",
+                            initial_step);
+    if (max_points <= 0) detail::throw_invalid(where, "options.max_points must be > 0", max_points);
+    if (max_corrector_iterations <= 0)
+      detail::throw_invalid(where, "options.max_corrector_iterations must be > 0",
+                            max_corrector_iterations);
+    if (fast_iterations < 1)
+      detail::throw_invalid(where, "options.fast_iterations must be >= 1", fast_iterations);
+    if (!(growth >= 1 && growth <= 4))
+      detail::throw_invalid(where, "options.growth must be in [1, 4]", growth);
+    if (direction != 1 && direction != -1)
+      detail::throw_invalid(where, "options.direction must be +1 or -1", direction);
+  }
+};
+
+/// How a continuation run ended.
+enum class ContinuationStatus : std::uint8_t {
+  Completed,     ///< the branch left the parameter range
+  MaxPoints,     ///< options.max_points reached inside the range
+  StepTooSmall,  ///< the corrector failed down to options.min_step (the last failure is reported)
+  StartFailed    ///< no orbit at the start parameter (the shooting failure is reported)
+};
+
+/// Human-readable name of a continuation status.
+inline const char* to_string(ContinuationStatus s) noexcept {
+  switch (s) {
+    case ContinuationStatus::Completed: return "completed";
+    case ContinuationStatus::MaxPoints: return "max_points";
+    case ContinuationStatus::StepTooSmall: return "step_too_small";
+    case ContinuationStatus::StartFailed: return "start_failed";
+  }
+  return "unknown";
+}
+
+/// One point of a branch.
+template <class System>
+struct ContinuationPoint {
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  Scalar parameter = 0;                ///< the parameter p
+  PeriodicOrbit<System> orbit;         ///< the orbit at p (initial state, multipliers, amplitudes, events)
+  Scalar step = 0;                     ///< the arclength step that reached it (0 at the start)
+  /// The orbit's stability differs from the previous point's (a multiplier crossed the unit
+  /// circle between them; orbit.floquet.instability says where when it became unstable).
+  bool stability_changed = false;
+};
+
+/// A computed branch.
+template <class System>
+struct ContinuationResult {
+  ContinuationStatus status = ContinuationStatus::Completed;  ///< how it ended
+  std::string message;  ///< why it ended early (empty when Completed)
+  std::vector<ContinuationPoint<System>> points;  ///< the points in branch order
+  /// status == Completed.
+  bool completed() const noexcept { return status == ContinuationStatus::Completed; }
+};
+
+/// Pseudo-arclength continuation of the forced periodic orbits of `System` in a scalar parameter
+/// p that the user maps onto the system: `set_parameter(system, p)` and the forcing period
+/// `period(p)` (e.g. 2 pi / p when p is the excitation frequency). Unknowns y = (x_P, p):
+///
+///     G(y) = x_P(t0 + T(p); x0, p) - x_P = 0,   tau^T (y - y_k - ds tau) = 0,
+///
+/// predictor y_k + ds tau, Newton corrector on both equations with dG/dx_P = M_PP - I (the
+/// monodromy of ShootingOptions) and dG/dp by central differences of re-shot orbits
+/// (h = fd_step max(1, |p|)). tau: at the start the null vector of [dG/dx_P, dG/dp] (towards
+/// options.direction); then the secant of the last two points, so the branch turns at folds.
+/// Step control: a corrector converged in <= fast_iterations grows ds by `growth` (up to
+/// max_step), one that needs more than half the allowed iterations halves it, a failure halves it
+/// and retries (down to min_step). The arclength norm is Euclidean in (x_P, p): scale the
+/// parameter (or the states) so that both are of order one. The start mode and t0 are kept along
+/// the branch (choose t0 so that the orbit is not switching there). The system is left at the
+/// parameter of the last point. Throws std::invalid_argument for caller errors only.
+template <class System>
+class Continuation {
+ public:
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// The user's map of p onto the system.
+  using SetParameter = std::function<void(System&, Scalar)>;
+  /// The forcing period as a function of p.
+  using PeriodOf = std::function<Scalar(Scalar)>;
+  /// Called after each accepted point (progress output).
+  using OnPoint = std::function<void(const ContinuationPoint<System>&)>;
+  /// The result type.
+  using Result = ContinuationResult<System>;
+
+  /// Keeps a reference to `system`. Throws std::invalid_argument when set_parameter or period is
+  /// empty, or for invalid options.
+  Continuation(System& system, SetParameter set_parameter, PeriodOf period,
+               ShootingOptions<Scalar> shooting = {}, ContinuationOptions<Scalar> options = {})
+      : sys_(system), set_(std::move(set_parameter)), period_(std::move(period)),
+        shooting_(system, std::move(shooting)), opt_(options) {
+    if (!set_) throw std::invalid_argument("Continuation: set_parameter must not be empty");
+    if (!period_) throw std::invalid_argument("Continuation: period must not be empty");
+    opt_.validate("Continuation");
+  }
+
+  /// Call `on_point(point)` after each accepted point.
+  void on_point(OnPoint f) { on_point_ = std::move(f); }
+
+  /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)).
+  /// Throws std::invalid_argument for p0 outside the range, or (via Shooting) for bad x0/t0.
+  Result run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0);
+
+ private:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  // Orbit run at (x, p) with the monodromy.
+  PeriodRun<System> shoot(const Mode& mode, Scalar t0, const State& x, Scalar p, bool monodromy) {
+    set_(sys_, p);
+    return run_period(sys_, mode, t0, x, period_(p), shooting_.options(), monodromy);
+  }
+  // dG/dp at (x, p) by central differences; false (and why) when a run fails.
+  bool parameter_derivative(const Mode& mode, Scalar t0, const State& x, Scalar p, Vector& gp,
+                            std::string& why);
+  // Corrector from y_pred along tau; true with the orbit, else why.
+  bool correct(const Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
+               const State& x_pred, Scalar p_pred, PeriodicOrbit<System>& orbit, int& iterations,
+               std::string& why);
+  Vector pack(const State& x, Scalar p) const {
+    Vector y(static_cast<Eigen::Index>(P_.size()) + 1);
+    for (std::size_t k = 0; k < P_.size(); ++k) y[static_cast<Eigen::Index>(k)] = x[P_[k]];
+    y[y.size() - 1] = p;
+    return y;
+  }
+  void unpack(const Vector& y, State& x, Scalar& p) const {
+    for (std::size_t k = 0; k < P_.size(); ++k) x[P_[k]] = y[static_cast<Eigen::Index>(k)];
+    p = y[y.size() - 1];
+  }
+
+  System& sys_;
+  SetParameter set_;
+  PeriodOf period_;
+  Shooting<System> shooting_;
+  ContinuationOptions<Scalar> opt_;
+  OnPoint on_point_;
+  std::vector<Eigen::Index> P_;
+};
+
+template <class System>
+bool Continuation<System>::parameter_derivative(const Mode& mode, Scalar t0, const State& x,
+                                                Scalar p, Vector& gp, std::string& why) {
+  const Scalar h = shooting_.options().fd_step * std::max(Scalar(1), std::abs(p));
+  const PeriodRun<System> plus = shoot(mode, t0, x, p + h, false);
+  const PeriodRun<System> minus = shoot(mode, t0, x, p - h, false);
+  set_(sys_, p);
+  if (!plus.ok() || !minus.ok()) {
+    why = "orbit run at p +- " + detail::format_value(h) + " failed: " +
+          (plus.ok() ? minus.message : plus.message);
+    return false;
+  }
+  Vector rp, rm;
+  shooting_.residual(plus.x_end, x, rp);
+  shooting_.residual(minus.x_end, x, rm);
+  gp = (rp - rm) / (Scalar(2) * h);
+  return true;
+}
+
+template <class System>
+bool Continuation<System>::correct(const Mode& mode, Scalar t0, State& x, Scalar& p,
+                                   const Vector& tau, const State& x_pred, Scalar p_pred,
+                                   PeriodicOrbit<System>& orbit, int& iterations,
+                                   std::string& why) {
+  const auto np = static_cast<Eigen::Index>(P_.size());
+  const Vector y_pred = pack(x_pred, p_pred);
+  x = x_pred;
+  p = p_pred;
+  Vector r, gp, rhs(np + 1);
+  Matrix J(np + 1, np + 1);
+  for (iterations = 1; iterations <= opt_.max_corrector_iterations; ++iterations) {
+    if (!detail::is_finite(p) || !(period_(p) > 0)) {
+      why = "the period T(p) is not > 0 at p = " + detail::format_value(p);
+      return false;
+    }
+    const PeriodRun<System> run = shoot(mode, t0, x, p, true);
+    if (!run.ok()) {
+      why = "orbit run failed at p = " + detail::format_value(p) + ": " + run.message;
+      return false;
+    }
+    const Scalar res = shooting_.residual(run.x_end, x, r);
+    if (res <= shooting_.tolerance_at(x)) {
+      orbit = shooting_.make_orbit(run, mode, t0, x, period_(p), false, res, iterations);
+      if (!orbit.ok()) why = orbit.message;
+      return orbit.ok();
+    }
+    if (!parameter_derivative(mode, t0, x, p, gp, why)) return false;
+    J.topLeftCorner(np, np) = shooting_.periodic_block(run.monodromy) - Matrix::Identity(np, np);
+    J.topRightCorner(np, 1) = gp;
+    J.bottomRows(1) = tau.transpose();
+    rhs.head(np) = -r;
+    rhs[np] = -tau.dot(pack(x, p) - y_pred);
+    const Eigen::FullPivLU<Matrix> lu(J);
+    if (!lu.isInvertible()) {
+      why = "singular corrector matrix at p = " + detail::format_value(p) + " (residual " +
+            detail::format_value(res) + ")";
+      return false;
+    }
+    const Vector y = pack(x, p) + lu.solve(rhs);
+    unpack(y, x, p);
+    why = "the corrector did not converge in " + std::to_string(opt_.max_corrector_iterations) +
+          " iterations (residual " + detail::format_value(res) +
+          "; the response may be quasi-periodic or chaotic here)";
+  }
+  return false;
+}
+
+template <class System>
+auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0)
+    -> Result {
+  static const std::string where = "Continuation::run";
+  detail::require_finite(where, "p0", p0);
+  if (!(p0 >= opt_.parameter_min && p0 <= opt_.parameter_max))
+    detail::throw_invalid(where, "p0 must lie in [options.parameter_min, options.parameter_max]",
+                          p0);
+  Result result;
+  P_ = shooting_.options().periodic_indices(x0_guess.size());
+  const auto np = static_cast<Eigen::Index>(P_.size());
+  set_(sys_, p0);
+  const Scalar T0 = period_(p0);
+  detail::require_positive(where, "period(p0)", T0);
+  PeriodicOrbit<System> orbit = shooting_.forced(mode, t0, x0_guess, T0);
+  if (!orbit.ok()) {
+    result.status = ContinuationStatus::StartFailed;
+    result.message = "no periodic orbit at p0 = " + detail::format_value(p0) + ": " + orbit.message;
+    return result;
+  }
+  State x = orbit.x0;
+  Scalar p = p0;
+  result.points.push_back({p, orbit, Scalar(0), false});
+  if (on_point_) on_point_(result.points.back());
+
+  // Start tangent: dG/dx_P v = -dG/dp, tau = (v, 1) / |(v, 1)| towards options.direction.
+  Vector gp, tau(np + 1);
+  std::string why;
+  if (!parameter_derivative(mode, t0, x, p, gp, why)) {
+    result.status = ContinuationStatus::StartFailed;
+    result.message = "start tangent: " + why;
+    return result;
+  }
+  const Eigen::FullPivLU<Matrix> lu(orbit.monodromy - Matrix::Identity(np, np));
+  if (!lu.isInvertible()) {
+    result.status = ContinuationStatus::StartFailed;
+    result.message = "start tangent: M - I is singular at p0 (a multiplier 1: start off a fold)";
+    return result;
+  }
+  tau.head(np) = lu.solve(-gp);
+  tau[np] = 1;
+  tau *= Scalar(opt_.direction) / tau.norm();
+
+  Scalar ds = opt_.initial_step;
+  while (static_cast<int>(result.points.size()) < opt_.max_points) {
+    const Vector y_pred = pack(x, p) + ds * tau;
+    State x_pred = x, x_new = x;
+    Scalar p_pred = 0, p_new = 0;
+    unpack(y_pred, x_pred, p_pred);
+    int iterations = 0;
+    PeriodicOrbit<System> next;
+    if (!correct(mode, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why)) {
+      ds /= Scalar(2);
+      if (ds < opt_.min_step) {
+        set_(sys_, p);
+        result.status = ContinuationStatus::StepTooSmall;
+        result.message = "the step fell below options.min_step after p = " +
+                         detail::format_value(p) + ": " + why;
+        return result;
+      }
+      continue;
+    }
+    if (p_new < opt_.parameter_min || p_new > opt_.parameter_max) {
+      set_(sys_, p);
+      return result;
+    }
+    const Vector secant = pack(x_new, p_new) - pack(x, p);
+    tau = secant / secant.norm();
+    x = x_new;
+    p = p_new;
+    const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
+    result.points.push_back({p, std::move(next), ds, changed});
+    if (on_point_) on_point_(result.points.back());
+    if (iterations <= opt_.fast_iterations)
+      ds = std::min(ds * opt_.growth, opt_.max_step);
+    else if (2 * iterations > opt_.max_corrector_iterations)
+      ds = std::max(ds / Scalar(2), opt_.min_step);
+  }
+  result.status = ContinuationStatus::MaxPoints;
+  result.message = "options.max_points (" + std::to_string(opt_.max_points) +
+                   ") reached at p = " + detail::format_value(p);
+  return result;
+}
+
+}  // namespace stickslip

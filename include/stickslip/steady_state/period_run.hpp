@@ -1,0 +1,166 @@
+#pragma once
+/// \file period_run.hpp
+/// \brief run_period: one period of a hybrid system from (mode, t0, x0), with its monodromy
+/// matrix, its events and the amplitude of chosen components.
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/dormand_prince54.hpp>
+#include <stickslip/ode/hybrid_stepper.hpp>
+#include <stickslip/steady_state/shooting_options.hpp>
+#include <stickslip/steady_state/variational_system.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+/// One event of an orbit: time and the modes before and after.
+template <class Scalar, class Mode>
+struct OrbitEvent {
+  Scalar t;   ///< event time
+  Mode from;  ///< mode before
+  Mode to;    ///< mode after
+};
+
+/// What run_period reports.
+template <class System>
+struct PeriodRun {
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// Dynamic matrix type.
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  Status status = Status::Success;  ///< how the run ended
+  std::string message;              ///< the run's message when status != Success
+  State x_end;                      ///< x(t0 + T)
+  Mode mode_end{};                  ///< mode at t0 + T
+  Matrix monodromy;                 ///< dx(t0 + T)/dx(t0), n x n (empty when not asked for)
+  std::vector<OrbitEvent<Scalar, Mode>> events;  ///< events in (t0, t0 + T]
+  /// max |x_i(t)| over the period (steps, events and samples) per amplitude component.
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> amplitudes;
+  StepperStats stats;   ///< counters (of the nominal run)
+  long grazing_events = 0;  ///< events whose saltation was skipped (tangent flow)
+  /// status == Status::Success.
+  bool ok() const noexcept { return status == Status::Success; }
+};
+
+namespace detail {
+/// Records events and max |x_i| (i in `components`) of a run; reads x[i], so it serves the plain
+/// and the augmented (variational) state alike.
+template <class Scalar, class Mode>
+struct OrbitObserver {
+  const std::vector<Eigen::Index>* components;
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1>* amplitudes;
+  std::vector<OrbitEvent<Scalar, Mode>>* events;
+
+  template <class X>
+  void track(const X& x) {
+    for (std::size_t k = 0; k < components->size(); ++k) {
+      const auto i = (*components)[k];
+      auto& a = (*amplitudes)[static_cast<Eigen::Index>(k)];
+      a = std::max(a, std::abs(x[i]));
+    }
+  }
+  template <class X>
+  bool on_step(Scalar, const X& x, const Mode&) {
+    track(x);
+    return true;
+  }
+  template <class X>
+  bool on_sample(Scalar, const X& x, const Mode&) {
+    track(x);
+    return true;
+  }
+  template <class X>
+  void on_event(const EventRecord<Scalar, Mode>& r, const X& x_after) {
+    events->push_back({r.t, r.from, r.to});
+    track(x_after);
+  }
+};
+}  // namespace detail
+
+/// Integrate `system` over one period [t0, t0 + T] from (mode, x0) with
+/// HybridStepper<., DormandPrince54> and options.stepper (samples every T /
+/// options.samples_per_period for the amplitudes). With `monodromy`, also M = dx(t0 + T)/dx(t0):
+/// options.monodromy == Variational integrates VariationalSystem<System> (one run);
+/// FiniteDifference re-shoots 2 n perturbed orbits (column j = (x(T; x0 + h e_j) -
+/// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)). The numerical outcome is in
+/// the result's status; throws std::invalid_argument for non-finite or empty x0, non-finite t0,
+/// T <= 0 or invalid options.
+template <class System>
+PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
+                             typename System::Scalar t0, const typename System::State& x0,
+                             typename System::Scalar T,
+                             const ShootingOptions<typename System::Scalar>& options,
+                             bool monodromy) {
+  using Scalar = typename System::Scalar;
+  using Mode = typename System::Mode;
+  static const std::string where = "run_period";
+  const Eigen::Index n = x0.size();
+  if (n == 0) throw std::invalid_argument(where + ": x0 must not be empty");
+  if (!detail::all_finite(x0)) throw std::invalid_argument(where + ": x0 must be finite");
+  detail::require_finite(where, "t0", t0);
+  detail::require_positive(where, "T", T);
+  options.validate(where, n);
+
+  PeriodRun<System> run;
+  const std::vector<Eigen::Index> comps = options.amplitude_indices(n);
+  run.amplitudes.setZero(static_cast<Eigen::Index>(comps.size()));
+  detail::OrbitObserver<Scalar, Mode> obs{&comps, &run.amplitudes, &run.events};
+  StepperOptions<Scalar> so = options.stepper;
+  if (options.samples_per_period > 0) so.output_interval = T / Scalar(options.samples_per_period);
+  obs.track(x0);
+
+  if (monodromy && options.monodromy == MonodromyMethod::Variational) {
+    VariationalSystem<System> var(system, n, options.fd_step);
+    HybridStepper<VariationalSystem<System>, DormandPrince54> stepper(var, so);
+    const auto r = stepper.integrate(mode, t0, var.initial_state(x0), t0 + T, obs);
+    run.status = r.status;
+    run.message = r.message;
+    run.x_end = r.x.head(n);
+    run.mode_end = r.mode;
+    run.stats = r.stats;
+    run.monodromy = var.sensitivity(r.x);
+    run.grazing_events = var.grazing_events();
+    return run;
+  }
+  HybridStepper<System, DormandPrince54> stepper(system, so);
+  const auto r = stepper.integrate(mode, t0, x0, t0 + T, obs);
+  run.status = r.status;
+  run.message = r.message;
+  run.x_end = r.x;
+  run.mode_end = r.mode;
+  run.stats = r.stats;
+  if (!monodromy || !r.ok()) return run;
+
+  StepperOptions<Scalar> plain = options.stepper;  // no samples: only the end state
+  HybridStepper<System, DormandPrince54> fd_stepper(system, plain);
+  run.monodromy.resize(n, n);
+  typename System::State xp = x0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Scalar h = options.fd_step * std::max(Scalar(1), std::abs(x0[j]));
+    xp[j] = x0[j] + h;
+    const auto rp = fd_stepper.integrate(mode, t0, xp, t0 + T);
+    xp[j] = x0[j] - h;
+    const auto rm = fd_stepper.integrate(mode, t0, xp, t0 + T);
+    xp[j] = x0[j];
+    if (!rp.ok() || !rm.ok()) {
+      const auto& bad = rp.ok() ? rm : rp;
+      run.status = bad.status;
+      run.message = "finite-difference monodromy, column " + std::to_string(j) + ": " + bad.message;
+      return run;
+    }
+    run.monodromy.col(j) = (rp.x - rm.x) / (Scalar(2) * h);
+  }
+  return run;
+}
+
+}  // namespace stickslip

@@ -1,0 +1,322 @@
+#pragma once
+/// \file shooting.hpp
+/// \brief Shooting: periodic orbits of a hybrid system by Newton's method on x(T) - x(0) = 0,
+/// forced (period given) or autonomous (period unknown, with a phase condition).
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/steady_state/floquet.hpp>
+#include <stickslip/steady_state/period_run.hpp>
+#include <stickslip/steady_state/shooting_options.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+/// How a periodic-orbit computation ended.
+enum class ShootingStatus : std::uint8_t {
+  Converged,          ///< a periodic orbit to the tolerance, its mode sequence closes
+  NoConvergence,      ///< Newton did not reach the tolerance (the residual is reported)
+  ModeNotPeriodic,    ///< x(T) = x(0) but the mode at t0 + T is not the start mode
+  IntegrationFailed,  ///< a run ended early (its status and message are reported)
+  SingularJacobian    ///< the Newton matrix is singular (e.g. a multiplier exactly 1)
+};
+
+/// Human-readable name of a shooting status.
+inline const char* to_string(ShootingStatus s) noexcept {
+  switch (s) {
+    case ShootingStatus::Converged: return "converged";
+    case ShootingStatus::NoConvergence: return "no_convergence";
+    case ShootingStatus::ModeNotPeriodic: return "mode_not_periodic";
+    case ShootingStatus::IntegrationFailed: return "integration_failed";
+    case ShootingStatus::SingularJacobian: return "singular_jacobian";
+  }
+  return "unknown";
+}
+
+/// A periodic orbit found by Shooting (or the last Newton iterate when it failed).
+template <class System>
+struct PeriodicOrbit {
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// Dynamic matrix type.
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
+  ShootingStatus status = ShootingStatus::NoConvergence;  ///< how the computation ended
+  std::string message;  ///< empty when converged; otherwise what failed, with the residual
+  Scalar t0 = 0;        ///< start time
+  Scalar period = 0;    ///< T (autonomous: the one found)
+  Mode mode{};          ///< mode at t0 (and, when converged, at t0 + T)
+  State x0;             ///< the orbit's state at t0
+  Scalar residual = 0;  ///< max |x_i(T) - x_i(0)| over the periodic components
+  int iterations = 0;   ///< orbit runs made (Newton iterations and backtracking trials)
+  /// dx_P(T)/dx_P(0) over the periodic components P (in the order of options.periodic).
+  Matrix monodromy;
+  /// Multipliers of `monodromy`, stability and instability kind.
+  FloquetMultipliers<Scalar> floquet;
+  /// max |x_i| over the orbit for options.amplitude_components.
+  Eigen::Matrix<Scalar, Eigen::Dynamic, 1> amplitudes;
+  /// The events of one period, in order.
+  std::vector<OrbitEvent<Scalar, Mode>> events;
+  StepperStats stats;  ///< counters of the last orbit run
+  /// status == ShootingStatus::Converged.
+  bool ok() const noexcept { return status == ShootingStatus::Converged; }
+};
+
+/// Periodic orbits of a hybrid system by single shooting:
+///
+///     forced:      x_P(t0 + T; x0) - x_P(0) = 0                    (T given, or k T: subharmonic)
+///     autonomous:  x_P(T; x0) - x_P(0) = 0,  f_P(x0_k)^T (x0 - x0_k) = 0   (T unknown)
+///
+/// over the periodic components P (options.periodic; the others keep their start values), by
+/// Newton's method with the Jacobian [M_PP - I] (autonomous: bordered by f_P(x(T)) and the phase
+/// row f_P(x0_k)^T: the correction is orthogonal to the flow at the current iterate). M is the
+/// monodromy (options.monodromy). When J is singular to the monodromy's accuracy (1 / |J^-1|,
+/// estimated by the LU's rcond, below 1000 options.stepper.rtol) the step is the minimum-norm
+/// least-squares one: a family of orbits (a damper stuck all period) is crossed the least; the
+/// status is SingularJacobian when the residual is not in J's range. The start mode is kept: the orbit must return to it at
+/// t0 + T. Every outcome is in the orbit's status; caller errors throw std::invalid_argument.
+template <class System>
+class Shooting {
+ public:
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// The result type.
+  using Orbit = PeriodicOrbit<System>;
+  /// Dynamic matrix type.
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// Dynamic vector type.
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+
+  /// Keeps a reference to `system` (it must outlive the solver). Options are validated per call.
+  explicit Shooting(System& system, ShootingOptions<Scalar> options = {})
+      : sys_(system), opt_(std::move(options)) {}
+
+  /// The options in use.
+  const ShootingOptions<Scalar>& options() const { return opt_; }
+  /// The system solved for.
+  System& system() { return sys_; }
+
+  /// The forced orbit of period `period` through (mode, t0) starting from the guess x0.
+  /// Throws std::invalid_argument for empty/non-finite x0, non-finite t0, period <= 0 or
+  /// invalid options.
+  Orbit forced(const Mode& mode, Scalar t0, const State& x0, Scalar period) {
+    return solve(mode, t0, x0, period, false);
+  }
+
+  /// The autonomous orbit through (mode, x0 guess) with period guess `period` (t0 = 0).
+  /// Throws like forced().
+  Orbit autonomous(const Mode& mode, const State& x0, Scalar period) {
+    return solve(mode, Scalar(0), x0, period, true);
+  }
+
+  /// The orbit data (monodromy block, multipliers, amplitudes, events) of a run that closes;
+  /// status Converged, or ModeNotPeriodic when the end mode differs from `mode`. Used by
+  /// Continuation.
+  Orbit make_orbit(const PeriodRun<System>& run, const Mode& mode, Scalar t0, const State& x0,
+                   Scalar period, bool autonomous, Scalar residual, int iterations) const;
+
+  /// max_i |x_end_i - x0_i| over the periodic components, and the residual vector r.
+  Scalar residual(const State& x_end, const State& x0, Vector& r) const {
+    const auto P = opt_.periodic_indices(x0.size());
+    r.resize(static_cast<Eigen::Index>(P.size()));
+    for (std::size_t k = 0; k < P.size(); ++k)
+      r[static_cast<Eigen::Index>(k)] = x_end[P[k]] - x0[P[k]];
+    return r.size() ? r.cwiseAbs().maxCoeff() : Scalar(0);
+  }
+  /// The Newton tolerance at x0: options.tolerance * max(1, max_i |x0_i|), i periodic.
+  Scalar tolerance_at(const State& x0) const {
+    Scalar s = 1;
+    for (Eigen::Index i : opt_.periodic_indices(x0.size())) s = std::max(s, std::abs(x0[i]));
+    return opt_.tolerance * s;
+  }
+  /// M_PP: the rows and columns of the periodic components of a full monodromy M.
+  Matrix periodic_block(const Matrix& M) const {
+    const auto P = opt_.periodic_indices(M.rows());
+    const auto p = static_cast<Eigen::Index>(P.size());
+    Matrix B(p, p);
+    for (Eigen::Index a = 0; a < p; ++a)
+      for (Eigen::Index b = 0; b < p; ++b)
+        B(a, b) = M(P[static_cast<std::size_t>(a)], P[static_cast<std::size_t>(b)]);
+    return B;
+  }
+
+ private:
+  Orbit solve(const Mode& mode, Scalar t0, const State& x0, Scalar period, bool autonomous);
+  // The Newton step J dy = rhs; false when J is singular and rhs is not in its range.
+  bool newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const;
+
+  System& sys_;
+  ShootingOptions<Scalar> opt_;
+};
+
+template <class System>
+bool Shooting<System>::newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const {
+  const Scalar floor = Scalar(1000) * opt_.stepper.rtol;
+  const Eigen::FullPivLU<Matrix> lu(J);
+  // 1 / |J^-1|_1 (estimated by rcond) above 1000 rtol: regular. (A relative test is not enough:
+  // the entries of M - I can all be round-off.)
+  if (lu.isInvertible() && lu.rcond() * J.cwiseAbs().colwise().sum().maxCoeff() > floor) {
+    dy = lu.solve(rhs);
+    return true;
+  }
+  // Singular to the accuracy of M: the minimum-norm least-squares step, pivots below 1000 rtol
+  // dropped. A family of orbits (e.g. a damper stuck all period: any stuck offset repeats)
+  // leaves the residual in the range of J and the step moves across the family the least;
+  // a residual outside the range (resonance without damping) has no Newton step.
+  Eigen::CompleteOrthogonalDecomposition<Matrix> cod(J);
+  const Scalar largest = J.cwiseAbs().maxCoeff();
+  cod.setThreshold(largest > floor ? floor / largest : Scalar(1));
+  dy = cod.solve(rhs);
+  return detail::all_finite(dy) &&
+         (J * dy - rhs).cwiseAbs().maxCoeff() <= Scalar(0.5) * rhs.cwiseAbs().maxCoeff();
+}
+
+template <class System>
+auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode, Scalar t0,
+                                  const State& x0, Scalar period, bool autonomous,
+                                  Scalar residual, int iterations) const -> Orbit {
+  Orbit o;
+  o.t0 = t0;
+  o.period = period;
+  o.mode = mode;
+  o.x0 = x0;
+  o.residual = residual;
+  o.iterations = iterations;
+  o.monodromy = periodic_block(run.monodromy);
+  o.floquet = floquet_multipliers<Scalar>(o.monodromy, autonomous, opt_.multiplier_tolerance);
+  o.amplitudes = run.amplitudes;
+  o.events = run.events;
+  o.stats = run.stats;
+  if (run.mode_end == mode) {
+    o.status = ShootingStatus::Converged;
+  } else {
+    o.status = ShootingStatus::ModeNotPeriodic;
+    o.message = "x(t0 + T) = x(t0) to " + detail::format_value(residual) +
+                " but the mode at t0 + T differs from the start mode (" +
+                std::to_string(run.events.size()) +
+                " events in the period): the orbit starts on a switching surface, or the "
+                "response is not periodic with this period";
+  }
+  return o;
+}
+
+template <class System>
+auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scalar period,
+                             bool autonomous) -> Orbit {
+  static const std::string where = "Shooting";
+  const Eigen::Index n = x0.size();
+  if (n == 0) throw std::invalid_argument(where + ": x0 must not be empty");
+  if (!detail::all_finite(x0)) throw std::invalid_argument(where + ": x0 must be finite");
+  detail::require_finite(where, "t0", t0);
+  detail::require_positive(where, "period", period);
+  opt_.validate(where, n);
+
+  const auto P = opt_.periodic_indices(n);
+  const auto p = static_cast<Eigen::Index>(P.size());
+  const Eigen::Index m = autonomous ? p + 1 : p;
+  State x = x0;
+  Scalar T = period;
+  Vector r, rhs(m), dy(m);
+  Matrix J(m, m);
+  State f0 = x0, fT = x0;
+  Orbit failed;
+  failed.t0 = t0;
+  failed.mode = mode;
+  int runs = 0;
+  auto run_failed = [&](const PeriodRun<System>& run, int it) {
+    failed.status = ShootingStatus::IntegrationFailed;
+    failed.message = "orbit run of Newton iteration " + std::to_string(it) + " failed (" +
+                     to_string(run.status) + "): " + run.message;
+    return failed;
+  };
+  PeriodRun<System> run = run_period(sys_, mode, t0, x, T, opt_, true);
+  ++runs;
+  if (!run.ok()) return run_failed(run, 0);
+  Scalar res = residual(run.x_end, x, r);
+  for (int it = 1;; ++it) {
+    failed.x0 = x;
+    failed.period = T;
+    failed.iterations = runs;
+    failed.stats = run.stats;
+    failed.residual = res;
+    if (res <= tolerance_at(x)) return make_orbit(run, mode, t0, x, T, autonomous, res, runs);
+    if (it > opt_.max_iterations) {
+      failed.status = ShootingStatus::NoConvergence;
+      failed.message = "Newton did not converge in " + std::to_string(opt_.max_iterations) +
+                       " iterations: residual " + detail::format_value(res) + " > tolerance " +
+                       detail::format_value(tolerance_at(x)) +
+                       " (the response may be quasi-periodic or chaotic, or the guess too far "
+                       "from a periodic orbit)";
+      return failed;
+    }
+    J.setZero();
+    J.topLeftCorner(p, p) = periodic_block(run.monodromy) - Matrix::Identity(p, p);
+    rhs.head(p) = -r;
+    if (autonomous) {
+      sys_.rhs(mode, t0, x, f0);
+      sys_.rhs(run.mode_end, t0 + T, run.x_end, fT);
+      for (Eigen::Index k = 0; k < p; ++k) {
+        J(k, p) = fT[P[static_cast<std::size_t>(k)]];
+        J(p, k) = f0[P[static_cast<std::size_t>(k)]];
+      }
+      rhs[p] = 0;
+    }
+    if (!newton_step(J, rhs, dy)) {
+      failed.status = ShootingStatus::SingularJacobian;
+      failed.message = "the Newton matrix is singular at iteration " + std::to_string(it) +
+                       " (residual " + detail::format_value(res) +
+                       ", not in its range): a Floquet multiplier is 1 (a fold, or an undamped "
+                       "system whose periodic orbits are not isolated)";
+      return failed;
+    }
+    // Backtracking: the full step unless it does not lower the residual (a switch crossed the
+    // ends of the period, or the period went out of range); halve it down to 1/32, then take it.
+    for (Scalar lambda = 1;; lambda /= 2) {
+      State xt = x;
+      for (Eigen::Index k = 0; k < p; ++k) xt[P[static_cast<std::size_t>(k)]] += lambda * dy[k];
+      const Scalar Tt = autonomous ? T + lambda * dy[p] : T;
+      const bool last = lambda < Scalar(1) / Scalar(32);
+      if (!(Tt > 0)) {
+        if (!last) continue;
+        failed.status = ShootingStatus::NoConvergence;
+        failed.message = "the period became " + detail::format_value(Tt) +
+                         " at Newton iteration " + std::to_string(it) + " (residual " +
+                         detail::format_value(res) + ")";
+        return failed;
+      }
+      PeriodRun<System> trial = run_period(sys_, mode, t0, xt, Tt, opt_, true);
+      ++runs;
+      if (!trial.ok()) {
+        if (!last) continue;
+        return run_failed(trial, it);
+      }
+      Vector rt;
+      const Scalar res_t = residual(trial.x_end, xt, rt);
+      if (res_t < res || last) {
+        x = xt;
+        T = Tt;
+        run = std::move(trial);
+        res = res_t;
+        r = rt;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace stickslip

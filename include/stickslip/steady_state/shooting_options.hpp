@@ -1,0 +1,113 @@
+#pragma once
+/// \file shooting_options.hpp
+/// \brief Options of the periodic-orbit solvers (shooting, monodromy, Floquet analysis).
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/stepper_options.hpp>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+/// How the monodromy matrix dx(T)/dx(0) of an orbit is computed.
+enum class MonodromyMethod : std::uint8_t {
+  /// Variational equations Phi' = (df/dx) Phi integrated with the orbit, with a saltation matrix
+  /// at every event (see VariationalSystem).
+  Variational,
+  /// Central differences of re-shot orbits: column j = (x(T; x0 + h e_j) - x(T; x0 - h e_j)) / 2h
+  /// (2 n plain runs; a cross-check of the variational monodromy).
+  FiniteDifference
+};
+
+/// Human-readable name of a monodromy method.
+inline const char* to_string(MonodromyMethod m) noexcept {
+  return m == MonodromyMethod::FiniteDifference ? "finite_difference" : "variational";
+}
+
+/// Options of Shooting and Continuation. Tolerances are on the components declared periodic.
+template <class Scalar>
+struct ShootingOptions {
+  /// Options of the runs (HybridStepper with DormandPrince54). Tight by default: the Newton
+  /// residual cannot be smaller than the integration error.
+  StepperOptions<Scalar> stepper = tight_stepper();
+  /// Indices of the state components that must repeat after a period (x_i(T) = x_i(0)); empty:
+  /// all. The others (e.g. energy quadratures) keep their initial values and are not solved for.
+  std::vector<Eigen::Index> periodic;
+  /// Newton converges when max_i |x_i(T) - x_i(0)| <= tolerance * max(1, max_i |x_i(0)|), i periodic.
+  Scalar tolerance = Scalar(1e-9);
+  /// Newton iterations allowed (each one orbit run, plus the monodromy).
+  int max_iterations = 30;
+  /// How the monodromy (the Newton Jacobian and the Floquet multipliers) is computed.
+  MonodromyMethod monodromy = MonodromyMethod::Variational;
+  /// Relative step h of the finite differences (monodromy, guard gradients, reset Jacobians,
+  /// the parameter derivative of continuation): h_j = fd_step * max(1, |x_j|).
+  Scalar fd_step = Scalar(1e-6);
+  /// Samples per period (dense output) for the amplitude measures, besides every step and event.
+  int samples_per_period = 256;
+  /// Components whose max |x_i| over the orbit is reported; empty: the periodic components.
+  std::vector<Eigen::Index> amplitude_components;
+  /// A multiplier with |mu| > 1 + multiplier_tolerance makes the orbit unstable.
+  Scalar multiplier_tolerance = Scalar(1e-6);
+
+  /// The indices 0 .. count-1 (e.g. the mechanical states of a system whose last components are
+  /// quadratures).
+  static std::vector<Eigen::Index> first(Eigen::Index count) {
+    std::vector<Eigen::Index> v(static_cast<std::size_t>(count > 0 ? count : 0));
+    std::iota(v.begin(), v.end(), Eigen::Index{0});
+    return v;
+  }
+
+  /// The default run options: rtol 1e-10, atol 1e-12.
+  static StepperOptions<Scalar> tight_stepper() {
+    StepperOptions<Scalar> o;
+    o.rtol = Scalar(1e-10);
+    o.atol = Scalar(1e-12);
+    return o;
+  }
+
+  /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range, for
+  /// state size n.
+  void validate(const std::string& where, Eigen::Index n) const {
+    stepper.validate(where);
+    detail::require_positive(where, "options.tolerance", tolerance);
+    if (max_iterations <= 0)
+      detail::throw_invalid(where, "options.max_iterations must be > 0", max_iterations);
+    if (!(fd_step > 0 && fd_step < Scalar(0.1)))
+      detail::throw_invalid(where, "options.fd_step must be in (0, 0.1)", fd_step);
+    if (samples_per_period < 0)
+      detail::throw_invalid(where, "options.samples_per_period must be >= 0", samples_per_period);
+    detail::require_non_negative(where, "options.multiplier_tolerance", multiplier_tolerance);
+    check_indices(where, "options.periodic", periodic, n);
+    check_indices(where, "options.amplitude_components", amplitude_components, n);
+  }
+
+  /// The periodic indices in use for state size n (all when `periodic` is empty).
+  std::vector<Eigen::Index> periodic_indices(Eigen::Index n) const {
+    return periodic.empty() ? first(n) : periodic;
+  }
+  /// The amplitude components in use for state size n.
+  std::vector<Eigen::Index> amplitude_indices(Eigen::Index n) const {
+    return amplitude_components.empty() ? periodic_indices(n) : amplitude_components;
+  }
+
+ private:
+  static void check_indices(const std::string& where, const char* name,
+                            const std::vector<Eigen::Index>& v, Eigen::Index n) {
+    std::vector<bool> seen(static_cast<std::size_t>(n > 0 ? n : 0), false);
+    for (Eigen::Index i : v) {
+      if (i < 0 || i >= n)
+        detail::throw_invalid(where, std::string(name) + ": index out of [0, " +
+                                         std::to_string(n) + ")", i);
+      if (seen[static_cast<std::size_t>(i)])
+        detail::throw_invalid(where, std::string(name) + ": index repeated", i);
+      seen[static_cast<std::size_t>(i)] = true;
+    }
+  }
+};
+
+}  // namespace stickslip

@@ -1,0 +1,94 @@
+// Shooting on the blade-damper scene (examples/blade_damper/blade_scene.hpp, a
+// FrictionDampedSystem) with 5 % modal damping at three preloads: the orbit equals the end of a
+// long transient (HybridStepper alone) to what the transient has settled. With this damping (a
+// probe of 60-period transients): N0 = 1 N and 2 N stick-slip (6-8 events per period, each
+// damper sticking twice), N0 >= 4 N stuck all period (the paper's 12 N is stuck too; 0.2 N
+// slides most of the period).
+
+#include "blade_damper/blade_scene.hpp"
+#include "steady_state/steady_state_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace steady_state_blade_test {
+namespace {
+
+using System = blade::BladeScene::System;
+constexpr double kPi = 3.14159265358979323846;
+
+TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
+  for (double preload : {0.2, 1.0, 26.0}) {
+    SCOPED_TRACE(::testing::Message() << "N0 " << preload);
+    blade::BladeParameters p;
+    p.preload = preload;
+    p.damping_ratio = 0.05;
+    blade::BladeScene scene = blade::make_blade_scene(p);
+    System& sys = *scene.system;
+    const double T = 2 * kPi / p.force_omega;
+    System::State x0 = sys.initial_state();
+    System::Mode mode = sys.requested_mode();
+    ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+    // The transient: 60 periods (1.9 s); the slowest mode decays as exp(-zeta w1 t), w1 ~ 230 rad/s:
+    // ~1e-9 of the start amplitude left.
+    const stickslip::StepperOptions<double> tight = stickslip::ShootingOptions<double>::tight_stepper();
+    stickslip::HybridStepper<System, stickslip::DormandPrince54> stepper(sys, tight);
+    const double t_a = 60 * T;
+    const auto transient = stepper.integrate(mode, 0.0, x0, t_a);
+    ASSERT_TRUE(transient.ok()) << transient.message;
+    const auto next = stepper.integrate(transient.mode, t_a, transient.x, t_a + T);
+    ASSERT_TRUE(next.ok()) << next.message;
+
+    // Periodic: q, q', x_d, x_d'. The contact coordinates X are a neutral direction (a contact
+    // point shifted along the member gives a neighbouring orbit: a multiplier 1 to within the
+    // change of the shapes, which makes M - I singular), so they keep the transient's values;
+    // the audit integrals are quadratures.
+    // Where the dampers slide, the monodromy by finite differences (2n plain periods): on this
+    // scene ~3x cheaper than the variational run (45 model evaluations per stage;
+    // docs/steady_state.md), which took ~300 s of this test under ASan; the variational path is
+    // checked against it on the single-DOF scenes (saltation tests). Stuck all period, the
+    // variational one: the family's multipliers 1 are exact there, while the differences carry
+    // ~rtol / fd_step = 1e-4 of noise, and the singular directions are lost in it.
+    const bool stuck_all_period = preload > 4;
+    stickslip::ShootingOptions<double> opt;
+    if (!stuck_all_period) opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+    opt.periodic = stickslip::ShootingOptions<double>::first(sys.contact_offset());
+    System::State guess = transient.x;
+    guess.tail(sys.state_size() - sys.linear_size()).setZero();  // the audit integrals restart
+    // Where the dampers slide, start 2 % off the settled state (Newton has to work); where they
+    // stay stuck the orbits form a family (see below) and a wrong guess would pick another member.
+    if (!stuck_all_period) guess.head(2 * sys.num_modes()) *= 1.02;
+    stickslip::Shooting<System> shooting(sys, opt);
+    const auto orbit = shooting.forced(transient.mode, t_a, guess, T);
+    ASSERT_TRUE(orbit.ok()) << orbit.message;
+    EXPECT_EQ(orbit.events.empty(), stuck_all_period);
+    if (!stuck_all_period) {
+      EXPECT_GE(orbit.iterations, 2);
+    }
+    const Eigen::Index n = sys.contact_offset();
+    const double scale = transient.x.head(n).cwiseAbs().maxCoeff();
+    const double settled = (next.x.head(n) - transient.x.head(n)).cwiseAbs().maxCoeff();
+    std::printf("N0 %g: %zu events per period, %d runs, transient settled to %.2e of %.2e, orbit vs transient %.2e, max |mu| %.3f\n",
+                preload, orbit.events.size(), orbit.iterations, settled, scale,
+                (orbit.x0.head(n) - transient.x.head(n)).cwiseAbs().maxCoeff(), orbit.floquet.max_modulus);
+    // The transient repeats itself to `settled`. Along the contracting directions (|mu| <=
+    // mu_c) the orbit is within settled / (1 - mu_c) of it; along a family (a damper stuck all
+    // period: multipliers 1, any stuck offset repeats) the minimum-norm Newton step moves by
+    // ~settled. The Newton tolerance adds tolerance max(1, |x|) / (1 - mu_c). Factor 10 for the
+    // non-normal M; plus the runs' error ~1e-9 of the scale.
+    double mu_c = 0;
+    for (Eigen::Index k = 0; k < orbit.floquet.multipliers.size(); ++k) {
+      const double a = std::abs(orbit.floquet.multipliers[k]);
+      if (a < 1 - 1e-3) mu_c = std::max(mu_c, a);
+    }
+    const double tol = 10 * (settled + opt.tolerance * std::max(1.0, scale)) / (1 - mu_c) + 1e-8 * scale;
+    EXPECT_LE((orbit.x0.head(n) - transient.x.head(n)).cwiseAbs().maxCoeff(), tol);
+    EXPECT_TRUE(orbit.floquet.stable);
+  }
+}
+
+}  // namespace
+}  // namespace steady_state_blade_test

@@ -1,0 +1,162 @@
+// Shooting on Den Hartog's harmonically forced Coulomb oscillator (tests/contact/den_hartog_orbit.hpp):
+//  - continuous sliding: the orbit found from a 10 % wrong guess is the closed-form one (state at
+//    t0, amplitude, phase of the displacement peak), and det M = (a+/a-)^2 from the reversal
+//    saltation (see below);
+//  - with stops (closed form not applicable): the orbit has stick phases, equals the end of a long
+//    transient, and its variational monodromy equals the finite-difference one.
+
+#include "contact/den_hartog_orbit.hpp"
+#include "steady_state/steady_state_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace steady_state_den_hartog_test {  // named: the steady-state test files share one unity TU
+namespace {
+
+using contact_test::DenHartogOrbit;
+using contact_test::SingleDofParameters;
+using namespace steady_state_test;
+
+constexpr double kMass = 2.0, kStiffness = 50.0, kForce = 10.0, kMuK = 0.25;
+
+struct Scene {
+  SingleDofParameters p;
+  double N, w, T;
+};
+
+Scene make_scene(double beta, double friction_ratio) {
+  Scene s;
+  s.N = friction_ratio * kForce / kMuK;
+  s.w = beta * std::sqrt(kStiffness / kMass);
+  s.T = 2 * contact_test::kDenHartogPi / s.w;
+  s.p.mass = kMass;
+  s.p.stiffness = kStiffness;
+  s.p.force_amplitude = kForce;
+  s.p.force_frequency = s.w;
+  s.p.normal_force = s.N;
+  return s;
+}
+
+double wrap(double t, double T) {
+  const double r = std::fmod(t, T);
+  return r < 0 ? r + T : r;
+}
+
+// Continuous sliding over a grid of beta (below, near-above and far above resonance) and friction
+// ratios mu_k N / F0. Tolerances: the runs use rtol 1e-10, atol 1e-12 and Newton stops at
+// 1e-9 max(1, |x|): the orbit's state is right to ~1e-8 of its scale (1e-7 leaves a margin of
+// 10). The amplitude is read at the reversal event, where x = X exactly (no sampling error).
+TEST(SteadyStateDenHartog, ContinuousSlidingOrbitIsTheClosedForm) {
+  int checked = 0;
+  for (double beta : {0.6, 1.4, 2.5})
+    for (double ratio : {0.1, 0.3}) {
+      const Scene s = make_scene(beta, ratio);
+      const DenHartogOrbit ref(kMass, kStiffness, kForce, s.w, kMuK * s.N, kMuK * s.N);
+      if (!ref.valid) continue;
+      ++checked;
+      Oscillator sys(s.p, Contact(Law(kMuK, kMuK)));
+      const double t0 = ref.t1 + ref.T / 4;  // mid of the x' > 0 half period
+      double x = 0, v = 0;
+      ref.state(t0, x, v);
+      ASSERT_GT(v, 0);
+      const Eigen::Vector4d guess(1.1 * x, 0.9 * v, 0, 0);
+      stickslip::Shooting<Oscillator> shooting(sys, oscillator_options());
+      const auto orbit = shooting.forced(S::SlipPositive, t0, guess, s.T);
+      SCOPED_TRACE(::testing::Message() << "beta " << beta << " ratio " << ratio);
+      ASSERT_TRUE(orbit.ok()) << orbit.message;
+      const double scale = ref.X;
+      EXPECT_NEAR(orbit.x0[0], x, 1e-7 * scale);
+      EXPECT_NEAR(orbit.x0[1], v, 1e-7 * scale * s.w);
+      EXPECT_NEAR(orbit.amplitudes[0], ref.X, 1e-7 * scale);
+      // Two reversals per period, the first (x' > 0 -> x' < 0) at the displacement peak t1 + T/2.
+      ASSERT_EQ(orbit.events.size(), 2u);
+      EXPECT_EQ(orbit.events[0].from, S::SlipPositive);
+      EXPECT_EQ(orbit.events[0].to, S::SlipNegative);
+      const double lag_error = wrap(orbit.events[0].t - (ref.t1 + ref.T / 2) + ref.T / 2, ref.T) - ref.T / 2;
+      EXPECT_NEAR(lag_error, 0.0, 1e-8 * ref.T);
+      // Liouville + saltation: each slip segment has trace(df/dx) = 0 (det 1); a reversal at v = 0
+      // (guard g = v) has S = I + (f+ - f-) e_v^T / a-, det S = a+/a- with
+      // m a-/+ = F(t) - k X -/+ mu_k N at the peak (both reversals alike by symmetry).
+      const double F_peak = kForce * std::cos(s.w * (ref.t1 + ref.T / 2));
+      const double a_minus = F_peak - kStiffness * ref.X - kMuK * s.N;
+      const double a_plus = F_peak - kStiffness * ref.X + kMuK * s.N;
+      // 1e-6: central-difference Jacobians and guard gradients (h = 1e-6) on a piecewise-linear
+      // system are exact to round-off / h ~ 1e-10; the event times carry 1e-12.
+      EXPECT_NEAR(orbit.monodromy.determinant(), std::pow(a_plus / a_minus, 2), 1e-6);
+      EXPECT_TRUE(orbit.floquet.stable);
+    }
+  EXPECT_GE(checked, 4);
+}
+
+// Records the accepted step with the largest |x'| (a slip state far from any event).
+struct FastestStep : stickslip::NullObserver {
+  double t = 0, speed = -1;
+  Eigen::Vector4d x = Eigen::Vector4d::Zero();
+  S mode = S::Stick;
+  bool on_step(double ts, const Eigen::Vector4d& xs, const S& m) {
+    if (std::abs(xs[1]) > speed) {
+      speed = std::abs(xs[1]);
+      t = ts;
+      x = xs;
+      mode = m;
+    }
+    return true;
+  }
+};
+
+// Heavy friction below resonance: the closed form does not apply (the body stops and sticks,
+// mu_s = 1.5 mu_k). Reference: the end of a 40-period transient (HybridStepper alone), which a
+// stick phase makes converge in a few periods (it collapses the state: multiplier 0).
+TEST(SteadyStateDenHartog, OrbitWithStopsEqualsTheLongTransientAndHasStickPhases) {
+  const Scene s = make_scene(0.5, 0.5);
+  const DenHartogOrbit ref(kMass, kStiffness, kForce, s.w, kMuK * s.N, 1.5 * kMuK * s.N);
+  ASSERT_FALSE(ref.valid);
+  Oscillator sys(s.p, Contact(Law(1.5 * kMuK, kMuK)));
+  stickslip::StepperOptions<double> tight = stickslip::ShootingOptions<double>::tight_stepper();
+  stickslip::HybridStepper<Oscillator, stickslip::DormandPrince54> stepper(sys, tight);
+  const auto transient = stepper.integrate(S::Stick, 0.0, Eigen::Vector4d::Zero(), 40 * s.T);
+  ASSERT_TRUE(transient.ok()) << transient.message;
+  FastestStep fastest;
+  const auto last = stepper.integrate(transient.mode, 40 * s.T, transient.x, 41 * s.T, fastest);
+  ASSERT_TRUE(last.ok()) << last.message;
+  ASSERT_NE(fastest.mode, S::Stick);
+
+  Eigen::Vector4d guess = fastest.x;
+  guess[0] *= 1.05;
+  guess[1] *= 0.95;
+  guess[2] = guess[3] = 0;
+  stickslip::Shooting<Oscillator> shooting(sys, oscillator_options());
+  const auto orbit = shooting.forced(fastest.mode, fastest.t, guess, s.T);
+  ASSERT_TRUE(orbit.ok()) << orbit.message;
+  // The transient and the orbit agree to the integration error (rtol 1e-10 over ~40 periods of
+  // O(0.1) states: ~1e-9; 1e-8 allowed).
+  EXPECT_NEAR(orbit.x0[0], fastest.x[0], 1e-8);
+  EXPECT_NEAR(orbit.x0[1], fastest.x[1], 1e-8);
+  const bool sticks = std::any_of(orbit.events.begin(), orbit.events.end(),
+                                  [](const auto& e) { return e.to == S::Stick; });
+  EXPECT_TRUE(sticks) << orbit.events.size() << " events, none into stick";
+  // A stick phase projects the velocity onto the surface: a multiplier 0 (1e-8: round-off of
+  // the saltation's zero row through the later segments).
+  ASSERT_EQ(orbit.floquet.multipliers.size(), 2);
+  EXPECT_LT(std::abs(orbit.floquet.multipliers[1]), 1e-8);
+  EXPECT_TRUE(orbit.floquet.stable);
+
+  // Saltation check: the variational monodromy (with stick entries, stick exits and
+  // reversals) against central differences of re-shot orbits (h = 1e-6 max(1, |x|): truncation
+  // ~h^2 |x''(x0)| and round-off rtol/h ~1e-4 x 1e-6... well below the 1e-6 asked by the issue).
+  auto opt = oscillator_options();
+  const auto var = stickslip::run_period(sys, orbit.mode, orbit.t0, orbit.x0, orbit.period, opt, true);
+  opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+  const auto fd = stickslip::run_period(sys, orbit.mode, orbit.t0, orbit.x0, orbit.period, opt, true);
+  ASSERT_TRUE(var.ok() && fd.ok()) << var.message << fd.message;
+  EXPECT_GE(var.events.size(), 3u);
+  EXPECT_EQ(var.grazing_events, 0);
+  expect_matrix_near(var.monodromy.topLeftCorner(2, 2), fd.monodromy.topLeftCorner(2, 2), 1e-6,
+                     "variational vs finite-difference monodromy");
+}
+
+}  // namespace
+}  // namespace steady_state_den_hartog_test

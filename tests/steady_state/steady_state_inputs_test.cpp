@@ -1,0 +1,163 @@
+// Caller errors (std::invalid_argument naming the parameter), the statuses of failed orbit
+// computations, and the Floquet classification on matrices with known eigenvalues.
+
+#include "contact/contact_test_util.hpp"
+#include "steady_state/smooth_forced_systems.hpp"
+#include "steady_state/steady_state_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace steady_state_inputs_test {
+namespace {
+
+using contact_test::expect_invalid_argument;
+using namespace steady_state_test;
+constexpr double kPi = 3.14159265358979323846;
+using Linear1 = ForcedOscillator<1>;
+
+TEST(SteadyStateInputs, ShootingRejectsBadArgumentsNamingThem) {
+  Linear1 sys;
+  sys.C(0, 0) = 0.1;
+  stickslip::Shooting<Linear1> shooting(sys);
+  const Linear1::State x0 = Linear1::State::Zero();
+  expect_invalid_argument([&] { shooting.forced(0, 0.0, x0, 0.0); }, {"Shooting", "period", "0"});
+  expect_invalid_argument([&] { shooting.forced(0, std::nan(""), x0, 1.0); }, {"Shooting", "t0"});
+  expect_invalid_argument([&] { shooting.forced(0, 0.0, Linear1::State(1.0, std::nan("")), 1.0); },
+                          {"Shooting", "x0"});
+  auto bad = [&](auto edit, const char* name) {
+    stickslip::ShootingOptions<double> o;
+    edit(o);
+    stickslip::Shooting<Linear1> s(sys, o);
+    expect_invalid_argument([&] { s.forced(0, 0.0, x0, 1.0); }, {"Shooting", name});
+  };
+  bad([](auto& o) { o.periodic = {0, 2}; }, "options.periodic");
+  bad([](auto& o) { o.periodic = {1, 1}; }, "options.periodic");
+  bad([](auto& o) { o.amplitude_components = {-1}; }, "options.amplitude_components");
+  bad([](auto& o) { o.tolerance = 0; }, "options.tolerance");
+  bad([](auto& o) { o.max_iterations = 0; }, "options.max_iterations");
+  bad([](auto& o) { o.fd_step = 0.5; }, "options.fd_step");
+  bad([](auto& o) { o.samples_per_period = -1; }, "options.samples_per_period");
+  bad([](auto& o) { o.stepper.rtol = -1; }, "options.rtol");
+}
+
+TEST(SteadyStateInputs, ContinuationRejectsBadArgumentsNamingThem) {
+  Linear1 sys;
+  auto set = [](Linear1& s, double w) { s.omega = w; };
+  auto period = [](double w) { return 2 * kPi / w; };
+  using C = stickslip::Continuation<Linear1>;
+  expect_invalid_argument([&] { C(sys, nullptr, period); }, {"Continuation", "set_parameter"});
+  expect_invalid_argument([&] { C(sys, set, nullptr); }, {"Continuation", "period"});
+  stickslip::ContinuationOptions<double> co;
+  co.parameter_min = 2;
+  co.parameter_max = 1;
+  expect_invalid_argument([&] { C(sys, set, period, {}, co); },
+                          {"Continuation", "options.parameter_max"});
+  co.parameter_min = 0.5;
+  co.parameter_max = 1.5;
+  co.direction = 0;
+  expect_invalid_argument([&] { C(sys, set, period, {}, co); }, {"Continuation", "options.direction"});
+  co.direction = 1;
+  co.initial_step = 1;
+  expect_invalid_argument([&] { C(sys, set, period, {}, co); },
+                          {"Continuation", "options.initial_step"});
+  co.initial_step = 0.01;
+  C cont(sys, set, period, {}, co);
+  expect_invalid_argument([&] { cont.run(0, 0.0, Linear1::State::Zero(), 3.0); },
+                          {"Continuation::run", "p0", "3"});
+}
+
+// x'' + x = cos t over T = 2 pi: no periodic orbit (resonance without damping) and M = I, so
+// M - I is singular: SingularJacobian with the residual, not a silent point.
+TEST(SteadyStateInputs, UndampedResonanceIsASingularJacobian) {
+  Linear1 sys;
+  stickslip::Shooting<Linear1> shooting(sys);
+  const auto orbit = shooting.forced(0, 0.0, Linear1::State::Zero(), 2 * kPi);
+  EXPECT_EQ(orbit.status, stickslip::ShootingStatus::SingularJacobian);
+  EXPECT_NE(orbit.message.find("residual"), std::string::npos) << orbit.message;
+  EXPECT_GT(orbit.residual, 1.0);  // the secular growth pi over one period
+}
+
+// Newton with one iteration from a far guess: NoConvergence, the message with the residual.
+TEST(SteadyStateInputs, NewtonOutOfIterationsSaysSoWithTheResidual) {
+  Linear1 sys;
+  sys.C(0, 0) = 0.1;
+  sys.k3 = 1.0;
+  auto o = stickslip::ShootingOptions<double>();
+  o.max_iterations = 1;
+  stickslip::Shooting<Linear1> shooting(sys, o);
+  const auto orbit = shooting.forced(0, 0.0, Linear1::State(3.0, 0.0), 2 * kPi);
+  EXPECT_EQ(orbit.status, stickslip::ShootingStatus::NoConvergence);
+  EXPECT_NE(orbit.message.find("residual"), std::string::npos) << orbit.message;
+  EXPECT_NE(orbit.message.find("quasi-periodic"), std::string::npos) << orbit.message;
+}
+
+// A state that never changes and a mode that toggles at every integer time (guard sin(pi t)):
+// x(1) = x(0) but the mode sequence has period 2, which shooting with T = 1 must report.
+struct TogglingMode {
+  using Scalar = double;
+  using State = Eigen::Matrix<double, 1, 1>;
+  using Mode = int;
+  void rhs(const Mode&, double, const State&, State& dxdt) const { dxdt.setZero(); }
+  Eigen::Index num_guards(const Mode&) const { return 1; }
+  void guards(const Mode&, double t, const State&, Eigen::VectorXd& g) const {
+    g[0] = std::sin(kPi * t);
+  }
+  stickslip::CrossingDirection guard_direction(const Mode&, Eigen::Index) const {
+    return stickslip::CrossingDirection::Either;
+  }
+  stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards&, double,
+                                         State&) const {
+    m = 1 - m;
+    return stickslip::TransitionAction::proceed();
+  }
+};
+
+TEST(SteadyStateInputs, ModeSequenceThatDoesNotCloseIsReported) {
+  TogglingMode sys;
+  auto o = stickslip::ShootingOptions<double>();
+  // The guard depends on t only: the error estimate is 0 and the step would grow over two
+  // crossings (both missed); the stepper sees a crossing only at step ends.
+  o.stepper.max_step = 0.1;
+  stickslip::Shooting<TogglingMode> shooting(sys, o);
+  const auto orbit = shooting.forced(0, 0.5, TogglingMode::State(1.0), 1.0);
+  EXPECT_EQ(orbit.status, stickslip::ShootingStatus::ModeNotPeriodic);
+  EXPECT_NE(orbit.message.find("mode"), std::string::npos) << orbit.message;
+  const auto twice = shooting.forced(0, 0.5, TogglingMode::State(1.0), 2.0);  // the 2T orbit
+  EXPECT_TRUE(twice.ok()) << twice.message;
+  EXPECT_EQ(twice.events.size(), 2u);
+}
+
+// Classification on matrices whose eigenvalues are known by construction.
+TEST(SteadyStateInputs, FloquetClassificationOfKnownSpectra) {
+  using M = Eigen::MatrixXd;
+  const double tol = 1e-9;
+  auto classify = [&](const M& m, bool autonomous) {
+    return stickslip::floquet_multipliers<double>(m, autonomous, tol);
+  };
+  const auto stable = classify(Eigen::Vector2d(0.5, -0.9).asDiagonal().toDenseMatrix(), false);
+  EXPECT_TRUE(stable.stable);
+  EXPECT_EQ(stable.instability, stickslip::Instability::None);
+  EXPECT_NEAR(stable.max_modulus, 0.9, 1e-15);
+  const auto fold = classify(Eigen::Vector2d(0.5, 1.2).asDiagonal().toDenseMatrix(), false);
+  EXPECT_EQ(fold.instability, stickslip::Instability::Fold);
+  const auto flip = classify(Eigen::Vector2d(0.5, -1.2).asDiagonal().toDenseMatrix(), false);
+  EXPECT_EQ(flip.instability, stickslip::Instability::PeriodDoubling);
+  M rotation(2, 2);  // 1.1 times a rotation by 0.3 rad: the pair 1.1 e^{+-0.3 i}
+  rotation << std::cos(0.3), -std::sin(0.3), std::sin(0.3), std::cos(0.3);
+  const auto ns = classify(1.1 * rotation, false);
+  EXPECT_EQ(ns.instability, stickslip::Instability::NeimarkSacker);
+  EXPECT_NEAR(ns.max_modulus, 1.1, 1e-14);
+  // Autonomous: the eigenvalue nearest 1 is the trivial one, the rest decide.
+  const auto autonomous = classify(Eigen::Vector3d(0.2, 1.0 + 1e-12, -0.7).asDiagonal().toDenseMatrix(), true);
+  ASSERT_TRUE(autonomous.has_trivial);
+  EXPECT_NEAR(autonomous.trivial.real(), 1.0, 1e-11);
+  ASSERT_EQ(autonomous.multipliers.size(), 2);
+  EXPECT_NEAR(autonomous.multipliers[0].real(), -0.7, 1e-15);
+  EXPECT_TRUE(autonomous.stable);
+}
+
+}  // namespace
+}  // namespace steady_state_inputs_test
