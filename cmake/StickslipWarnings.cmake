@@ -8,6 +8,8 @@ target_compile_options(stickslip_project_options INTERFACE
 if(STICKSLIP_SANITIZE)
   target_compile_options(stickslip_project_options INTERFACE
     -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  # Lets a test scale down its longest cases under the sanitizers (it says which and why).
+  target_compile_definitions(stickslip_project_options INTERFACE STICKSLIP_SANITIZED)
   target_link_options(stickslip_project_options INTERFACE -fsanitize=address,undefined)
 endif()
 target_link_libraries(stickslip_project_options INTERFACE stickslip::stickslip)

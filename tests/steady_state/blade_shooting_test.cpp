@@ -20,8 +20,18 @@ namespace {
 using System = blade::BladeScene::System;
 constexpr double kPi = 3.14159265358979323846;
 
+// Under the sanitizers (STICKSLIP_SANITIZED, set by STICKSLIP_SANITIZE) the 0.2 N orbit (five
+// Newton runs, the most expensive) is left out: the two others keep both monodromy paths (finite
+// differences through stick-slip events, the variational one on the stuck-all-period family)
+// under ASan + UBSan, and the test's ~140 s there fall to what the test budget can carry.
+#if defined(STICKSLIP_SANITIZED)
+constexpr double kPreloads[] = {1.0, 26.0};
+#else
+constexpr double kPreloads[] = {0.2, 1.0, 26.0};
+#endif
+
 TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
-  for (double preload : {0.2, 1.0, 26.0}) {
+  for (double preload : kPreloads) {
     SCOPED_TRACE(::testing::Message() << "N0 " << preload);
     blade::BladeParameters p;
     p.preload = preload;
