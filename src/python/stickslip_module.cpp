@@ -654,6 +654,104 @@ void bind_trade_study(py::module_& m) {
       py::arg("rows"), "The rows as CSV text (write_trade_csv).");
 }
 
+
+/// A periodic orbit of Shooting<System>::forced as Python sees it.
+struct PyOrbit {
+  ShootingStatus status = ShootingStatus::NoConvergence;
+  std::string message;
+  double t0 = 0, period = 0, residual = 0;
+  int iterations = 0;
+  State x0;
+  std::vector<ContactState> mode;
+  Eigen::MatrixXd monodromy;
+  Eigen::VectorXcd multipliers;
+  double max_modulus = 0;
+  bool stable = false;
+  Instability instability = Instability::None;
+  Eigen::VectorXd amplitudes;
+  std::vector<Transition> events;
+};
+
+void bind_steady_state(py::module_& m) {
+  py::enum_<ShootingStatus>(m, "ShootingStatus")
+      .value("Converged", ShootingStatus::Converged)
+      .value("NoConvergence", ShootingStatus::NoConvergence)
+      .value("ModeNotPeriodic", ShootingStatus::ModeNotPeriodic)
+      .value("IntegrationFailed", ShootingStatus::IntegrationFailed)
+      .value("SingularJacobian", ShootingStatus::SingularJacobian);
+  py::enum_<Instability>(m, "Instability")
+      .value("Stable", Instability::None)  // "None" is a Python keyword
+      .value("Fold", Instability::Fold)
+      .value("PeriodDoubling", Instability::PeriodDoubling)
+      .value("NeimarkSacker", Instability::NeimarkSacker);
+  py::class_<PyOrbit>(m, "PeriodicOrbit", "A periodic orbit found by shooting (docs/steady_state.md).")
+      .def_readonly("status", &PyOrbit::status)
+      .def_property_readonly("ok", [](const PyOrbit& o) { return o.status == ShootingStatus::Converged; })
+      .def_readonly("message", &PyOrbit::message)
+      .def_readonly("t0", &PyOrbit::t0)
+      .def_readonly("period", &PyOrbit::period)
+      .def_readonly("residual", &PyOrbit::residual, "max |x_i(T) - x_i(0)| over the periodic components")
+      .def_readonly("iterations", &PyOrbit::iterations, "orbit runs made")
+      .def_readonly("x0", &PyOrbit::x0, "the orbit's state at t0")
+      .def_readonly("mode", &PyOrbit::mode, "contact states at t0")
+      .def_readonly("monodromy", &PyOrbit::monodromy, "dx_P(T)/dx_P(0) over the periodic components P")
+      .def_readonly("multipliers", &PyOrbit::multipliers, "Floquet multipliers")
+      .def_readonly("max_modulus", &PyOrbit::max_modulus)
+      .def_readonly("stable", &PyOrbit::stable)
+      .def_readonly("instability", &PyOrbit::instability)
+      .def_readonly("amplitudes", &PyOrbit::amplitudes, "max |x_i| over the orbit (the periodic components)")
+      .def_readonly("events", &PyOrbit::events, "the contact switches of one period");
+  m.def(
+      "find_periodic_orbit",
+      [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
+         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
+         double rtol, double atol) {
+        ShootingOptions<double> opt;
+        opt.stepper.rtol = rtol;
+        opt.stepper.atol = atol;
+        opt.tolerance = tolerance;
+        opt.max_iterations = max_iterations;
+        if (monodromy == "finite_difference") opt.monodromy = MonodromyMethod::FiniteDifference;
+        else if (monodromy != "variational")
+          throw std::invalid_argument("find_periodic_orbit: monodromy must be 'variational' or 'finite_difference', got '" +
+                                      monodromy + "'");
+        // Default periodic set: q, q', x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a
+        // neutral direction) nor the energy quadratures (docs/steady_state.md).
+        opt.periodic = periodic ? *periodic
+                                : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+        State x = x0 ? *x0 : system.initial_state();
+        Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        PyOrbit out;
+        {
+          py::gil_scoped_release release;
+          Shooting<System> shooting(system, opt);
+          const auto orbit = shooting.forced(md, t0, x, period);
+          out.status = orbit.status;
+          out.message = orbit.message;
+          out.t0 = orbit.t0;
+          out.period = orbit.period;
+          out.residual = orbit.residual;
+          out.iterations = orbit.iterations;
+          out.x0 = orbit.x0;
+          out.mode = to_list(orbit.mode);
+          out.monodromy = orbit.monodromy;
+          out.multipliers = orbit.floquet.multipliers;
+          out.max_modulus = orbit.floquet.max_modulus;
+          out.stable = orbit.floquet.stable;
+          out.instability = orbit.floquet.instability;
+          out.amplitudes = orbit.amplitudes;
+          for (const auto& e : orbit.events) out.events.push_back(Transition{e.t, to_list(e.from), to_list(e.to)});
+        }
+        return out;
+      },
+      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+      py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
+      py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      "Forced periodic orbit of the given period by shooting from (mode, t0, x0) (default: the system's initial "
+      "state), with its monodromy and Floquet multipliers (Shooting::forced, docs/steady_state.md). periodic: the "
+      "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D).");
+}
+
 }  // namespace
 
 PYBIND11_MODULE(stickslip, m) {
@@ -664,4 +762,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_system(m);
   bind_simulate(m);
   bind_trade_study(m);
+  bind_steady_state(m);
 }

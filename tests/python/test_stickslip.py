@@ -279,3 +279,43 @@ def test_bad_input_raises_value_error_naming_the_parameter():
         ss.simulate(system, 0.1, x0=np.zeros(3))
     with pytest.raises(ValueError, match="window.t_end must be > window.t_start"):
         ss.simulate(system, 0.1, statistics=ss.StatisticsWindow(1.0, 0.5, 0.1))
+
+
+def test_periodic_orbit_of_a_damped_linear_scene_is_the_closed_form():
+    # No damper, modal damping zeta: q_j'' + 2 zeta w_j q_j' + w_j^2 q_j = psi_j F sin(W t) has the
+    # periodic orbit q_j = Im(psi_j F e^{iWt} / (w_j^2 - W^2 + 2i zeta w_j W)) and Floquet
+    # multipliers exp(lambda T), lambda = -zeta w_j +- i w_j sqrt(1 - zeta^2). Shooting starts from
+    # rest (far from the orbit) and must find it. Tolerances: Newton stops at 1e-9 of the state's
+    # size and the runs are at rtol 1e-10, so the orbit's state is within ~1e-8 of the closed form
+    # relative to its largest component; the multipliers come from the variational monodromy at
+    # the same tolerances: 1e-6.
+    f, m, basis = cantilever()
+    zeta, F, W = 0.02, 1.0, 200.0
+    basis = basis.with_modal_damping(np.full(len(basis), zeta))
+    system = ss.FrictionDampedSystem(f, basis, [], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F, W)])
+    psi = system.point_shape(m, 0.1, ss.LoadDirection.GlobalX)
+    w = basis.omega
+    T = 2 * math.pi / W
+    orbit = ss.find_periodic_orbit(system, T)
+    assert orbit.ok, orbit.message
+    assert orbit.status == ss.ShootingStatus.Converged
+    n = len(basis)
+    a = psi * F / (w ** 2 - W ** 2 + 2j * zeta * w * W)
+    q0, qd0 = np.imag(a), np.imag(1j * W * a)  # at t0 = 0
+    ref = np.concatenate([q0, qd0])
+    err = np.abs(orbit.x0[:2 * n] - ref).max() / np.abs(ref).max()
+    assert err < 1e-8, f"orbit vs closed form: {err:.2e}"
+    lam = -zeta * w + 1j * w * math.sqrt(1 - zeta ** 2)
+    expected = np.sort(np.abs(np.concatenate([np.exp(lam * T), np.exp(np.conj(lam) * T)])))
+    assert np.abs(np.sort(np.abs(orbit.multipliers)) - expected).max() < 1e-6
+    assert orbit.stable and orbit.instability == ss.Instability.Stable
+    assert orbit.events == []
+
+
+def test_periodic_orbit_rejects_a_bad_request_naming_it():
+    f, m, basis = cantilever()
+    system = ss.FrictionDampedSystem(f, basis, [], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, 1.0, 200.0)])
+    with pytest.raises(ValueError, match="monodromy"):
+        ss.find_periodic_orbit(system, 0.01, monodromy="guess")
+    with pytest.raises(ValueError, match="period"):
+        ss.find_periodic_orbit(system, -1.0)
