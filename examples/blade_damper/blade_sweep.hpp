@@ -63,6 +63,12 @@ inline std::vector<double> parse_list(const std::string& s) {
   return v;
 }
 
+/// The value after option argv[i] (advancing i to it); throws std::invalid_argument when it is missing.
+inline std::string next_argument(int argc, char** argv, int& i) {
+  if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
+  return argv[++i];
+}
+
 /// --sweep's "lo:hi:count" into lo, hi, count.
 /// Throws std::invalid_argument unless 0 < lo < hi and count >= 2.
 inline void parse_sweep_range(const std::string& s, double& lo, double& hi, int& count) {

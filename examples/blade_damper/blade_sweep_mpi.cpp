@@ -49,10 +49,7 @@ Options parse(int argc, char** argv) {
   double lo = 0.5, hi = 40;
   int count = 32;
   bool log_spaced = true;
-  auto need = [&](int& i) -> std::string {
-    if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
-    return argv[++i];
-  };
+  auto need = [&](int& i) { return blade::next_argument(argc, argv, i); };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {

@@ -98,10 +98,7 @@ using blade::parse_list;
 Cli parse(int argc, char** argv) {
   Cli c;
   c.settings = blade::default_settings();
-  auto need = [&](int& i) -> std::string {
-    if (i + 1 >= argc) throw std::invalid_argument(std::string("missing value after ") + argv[i]);
-    return argv[++i];
-  };
+  auto need = [&](int& i) { return blade::next_argument(argc, argv, i); };
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
