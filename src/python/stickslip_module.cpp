@@ -219,6 +219,7 @@ RunOptions<double> make_run_options(const std::string& integrator, const py::kwa
     else if (key == "event_location") s.event_location = v.cast<EventLocation>();
     else if (key == "event_time_tolerance") s.event_time_tolerance = v.cast<double>();
     else if (key == "guard_zero_tolerance") s.guard_zero_tolerance = v.cast<double>();
+    else if (key == "guard_samples") s.guard_samples = v.cast<long>();
     else if (key == "zeno_max_events") s.zeno_max_events = v.cast<long>();
     else if (key == "zeno_window") s.zeno_window = v.cast<double>();
     else if (key == "output_interval") s.output_interval = v.cast<double>();
@@ -519,7 +520,8 @@ void bind_simulate(py::module_& m) {
       .def_readonly("guard_evaluations", &StepperStats::guard_evaluations)
       .def_readonly("jacobian_evaluations", &StepperStats::jacobian_evaluations)
       .def_readonly("factorisations", &StepperStats::factorisations)
-      .def_readonly("events", &StepperStats::events);
+      .def_readonly("events", &StepperStats::events)
+      .def_readonly("guard_sample_cuts", &StepperStats::guard_sample_cuts);
   py::class_<Transition>(m, "Transition", "One transition of the run: every damper's state before and after.")
       .def_readonly("t", &Transition::t)
       .def_readonly("from_mode", &Transition::from)

@@ -471,6 +471,30 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     }
     ++st.accepted_steps;
 
+    // Interior guard samples (options.guard_samples): a guard that has crossed at a sample but
+    // not (or no longer) at the step end cuts the step back to that sample, re-taken with the
+    // method itself, so that the event is located in it as at any step end.
+    bool cut_back = false;
+    if (guarded_ && opt_.guard_samples > 0 && !monitor_.any_crossed(gb_)) {
+      const Scalar parts = static_cast<Scalar>(opt_.guard_samples + 1);
+      for (long k = 1; k <= opt_.guard_samples; ++k) {
+        const Scalar theta = static_cast<Scalar>(k) / parts;
+        core_.dense(theta, h, x_, f_, x1_, f1_, xs_);
+        eval_guards(mode, t + theta * h, xs_, gt_, st);
+        if (!monitor_.any_crossed(gt_)) continue;
+        h = theta * h;
+        t1 = t + h;
+        ++st.guard_sample_cuts;
+        core_.step(sys_, mode, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
+        eval_guards(mode, t1, x1_, gb_, st);
+        // (a shorter step of a method that passed on the longer one: its error is smaller; a
+        // non-finite one cannot come from a finite longer step's sub-interval in practice, and
+        // is caught at the next step's check)
+        cut_back = true;
+        break;
+      }
+    }
+
     if (guarded_ && monitor_.any_crossed(gb_)) {
       const Scalar te = locate_event(mode, t, h, t1, st);
       const bool sampled =
@@ -516,7 +540,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     t = t1;
     x_.swap(x1_);
     f_.swap(f1_);
-    if (on_grid) {
+    if (on_grid && !cut_back) {
       ++grid_k;
     } else {
       grid_t0 = t;  // off the grid after a non-finite trial step: a new grid from here

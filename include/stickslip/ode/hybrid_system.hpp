@@ -92,6 +92,9 @@ struct StepperStats {
   /// Located events: one per call of the system's transition(), however many guards fired
   /// and whatever it did (FrictionDampedSystem::events() logs one entry per damper switched).
   long events = 0;
+  /// Steps cut back to an interior guard sample (StepperOptions::guard_samples) at which a guard
+  /// had crossed.
+  long guard_sample_cuts = 0;
 };
 
 /// One located event as reported to observers.

@@ -63,6 +63,12 @@ struct StepperOptions {
   EventState event_state = EventState::Reintegrate;  ///< state at a root-found event (not bisection); see docs/ode.md
   Scalar event_time_tolerance = Scalar(1e-12);  ///< width of the final bracket of an event time
   Scalar guard_zero_tolerance = Scalar(1e-12);  ///< |g| below this at a mode start counts as zero
+  /// Guard values checked on the dense output at this many equally spaced interior points of
+  /// every accepted step besides its end (0: the step-end sign test only). A guard that crosses
+  /// and crosses back inside one step is then seen when a sample falls inside the excursion; the
+  /// step is cut back to that sample and the event located in it. HybridStepper only (the
+  /// exponential stepper brackets its guards in closed form). See docs/ode.md.
+  long guard_samples = 0;
   long zeno_max_events = 1000;         ///< more events than this inside zeno_window -> ZenoGuard
   Scalar zeno_window = Scalar(1e-6);   ///< length of the sliding window of the event-rate cap
   long zeno_max_immediate_events = 100;  ///< consecutive immediate events allowed
@@ -86,6 +92,10 @@ struct StepperOptions {
     if (max_steps <= 0) detail::throw_invalid(where, "options.max_steps must be > 0", max_steps);
     require_positive(where, "options.event_time_tolerance", event_time_tolerance);
     require_non_negative(where, "options.guard_zero_tolerance", guard_zero_tolerance);
+    constexpr long guard_samples_limit = 1000;
+    if (guard_samples < 0 || guard_samples > guard_samples_limit)
+      detail::throw_invalid(where, "options.guard_samples must be in [0, " + std::to_string(guard_samples_limit) + "]",
+                            guard_samples);
     // The event-rate cap keeps the times of the last zeno_max_events events (one Scalar each):
     // 1e6 of them are 8 MB, while 1e9 would allocate 8 GB before the first step.
     constexpr long zeno_events_limit = 1'000'000;
