@@ -42,6 +42,7 @@ struct Options {
   std::string backend = "mpi";
   unsigned threads = 0;
   std::string out = "out";
+  bool help = false;  ///< --help: print the usage (rank 0) and end normally, MPI finalised
 };
 
 Options parse(int argc, char** argv) {
@@ -53,8 +54,8 @@ Options parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
-      std::cout << kHelp;
-      std::exit(0);
+      o.help = true;
+      return o;
     } else if (a == "--sweep") {
       blade::parse_sweep_range(need(i), lo, hi, count);
     } else if (a == "--sweep-linear") {
@@ -92,6 +93,11 @@ int main(int argc, char** argv) {
   int rc = 0;
   try {
     const Options o = parse(argc, argv);
+    if (o.help) {
+      if (rank == 0) std::cout << kHelp;
+      MPI_Finalize();
+      return 0;
+    }
     blade::BladeParameters base;
     base.modes = o.modes;
     const blade::RunSettings settings = blade::settings_for_duration(blade::default_settings(), o.duration);

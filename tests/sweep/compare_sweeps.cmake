@@ -16,6 +16,23 @@ function(run)
 endfunction()
 
 # sweep.csv as lines, the 10th column (cpu_seconds) removed.
+# RANKS=help: --help on two ranks prints the usage once (rank 0) and ends normally, every rank
+# having finalised MPI (it used to call exit() before MPI_Finalize, which mpirun reports as an
+# abnormal end with a non-zero status).
+if(RANKS STREQUAL "help")
+  execute_process(COMMAND ${MPIEXEC} -np 2 --oversubscribe --allow-run-as-root ${SWEEP_EXE} --help
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "--help on 2 ranks failed (${rc}):\n${log}\n${err}")
+  endif()
+  string(REGEX MATCHALL "Usage: mpirun" usages "${log}")
+  list(LENGTH usages n)
+  if(NOT n EQUAL 1)
+    message(FATAL_ERROR "--help on 2 ranks printed the usage ${n} times:\n${log}")
+  endif()
+  return()
+endif()
+
 function(read_sweep_csv path var)
   file(STRINGS ${path} lines)
   set(result "")
