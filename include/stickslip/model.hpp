@@ -10,6 +10,7 @@
 #include "stickslip/model/normal_load.hpp"
 #include "stickslip/model/point_damper.hpp"
 #include "stickslip/model/point_load.hpp"
+#include "stickslip/model/separation.hpp"
 #include "stickslip/model/simulate.hpp"
 #include "stickslip/model/static_preload.hpp"
 #include "stickslip/model/stuck_modes.hpp"
