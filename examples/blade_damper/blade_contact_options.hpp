@@ -2,7 +2,8 @@
 /// \file blade_contact_options.hpp
 /// \brief The example's contact options of issue #22: --restitution e (the dampers leave the
 /// platform at lift-off and land again, Separation::Separate with Newton's coefficient e) and
-/// --ends stop|extend (what a contact point does at a platform end). docs/blade_damper.md.
+/// --ends stop|extend|wall (what a contact point does at a platform end; a wall reflects it with
+/// --wall-restitution). docs/blade_damper.md.
 
 #include <stickslip/model.hpp>
 
@@ -19,14 +20,20 @@ struct ContactOptions {
   double restitution = -1.0;
   /// Impacts approaching slower than this land (PointDamper::landing_speed) [m/s].
   double landing_speed = 1e-4;
+  /// --ends wall: both platform ends are rigid walls (MemberEnd::Wall) with this restitution.
+  bool walls = false;
+  double wall_restitution = 1.0;
 };
 
 /// The option lines of --help.
 inline const char* contact_options_help() {
   return "  --restitution e        dampers leave the platform at lift-off and land again with\n"
          "                         Newton's coefficient e in [0, 1] (default: stop at lift-off)\n"
-         "  --ends stop|extend     at a platform end: stop the run (default) or continue the end\n"
-         "                         elements' shapes (same as --beyond-ends)\n";
+         "  --ends stop|extend|wall  at a platform end: stop the run (default), continue the end\n"
+         "                         elements' shapes (same as --beyond-ends), or reflect the\n"
+         "                         contact point from a rigid wall (V -> -e V; no resting\n"
+         "                         contact with a wall yet: a damper dragged into it chatters)\n"
+         "  --wall-restitution e   the walls' coefficient of restitution (default 1)\n";
 }
 
 /// Parses `a` (argv[i]) when it is a contact option, reading its value with `next` (which
@@ -43,9 +50,17 @@ bool parse_contact_option(const std::string& a, Next&& next, int& i, ContactOpti
   }
   if (a == "--ends") {
     const std::string v = next(i);
-    if (v == "stop") model.end_policy = stickslip::EndPolicy::Throw;
+    contact.walls = v == "wall";
+    if (v == "stop" || v == "wall") model.end_policy = stickslip::EndPolicy::Throw;
     else if (v == "extend") model.end_policy = stickslip::EndPolicy::Extrapolate;
-    else throw std::invalid_argument("--ends expects stop or extend, got " + v);
+    else throw std::invalid_argument("--ends expects stop, extend or wall, got " + v);
+    return true;
+  }
+  if (a == "--wall-restitution") {
+    const std::string v = next(i);
+    const double e = std::stod(v);
+    if (!(e >= 0.0 && e <= 1.0)) throw std::invalid_argument("--wall-restitution expects e in [0, 1], got " + v);
+    contact.wall_restitution = e;
     return true;
   }
   return false;
@@ -54,8 +69,12 @@ bool parse_contact_option(const std::string& a, Next&& next, int& i, ContactOpti
 /// Applies the contact choices to the scene's dampers.
 template <class Damper>
 void apply_contact_options(const ContactOptions& contact, std::vector<Damper>& dampers) {
-  if (contact.restitution < 0) return;
   for (Damper& d : dampers) {
+    if (contact.walls) {
+      d.start_end = d.finish_end = stickslip::MemberEnd::Wall;
+      d.wall_restitution = contact.wall_restitution;
+    }
+    if (contact.restitution < 0) continue;
     d.separation = stickslip::Separation::Separate;
     d.restitution = contact.restitution;
     d.landing_speed = contact.landing_speed;

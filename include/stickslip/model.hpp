@@ -6,6 +6,7 @@
 #include "stickslip/model/damper_states.hpp"
 #include "stickslip/model/damper_statistics.hpp"
 #include "stickslip/model/friction_damped_system.hpp"
+#include "stickslip/model/member_end.hpp"
 #include "stickslip/model/model_options.hpp"
 #include "stickslip/model/normal_load.hpp"
 #include "stickslip/model/point_damper.hpp"

@@ -300,6 +300,11 @@ void bind_dampers(py::module_& m) {
       .value("SlipNegative", ContactState::SlipNegative)
       .value("LiftOff", ContactState::LiftOff)
       .value("Separated", ContactState::Separated);
+  py::enum_<MemberEnd>(m, "MemberEnd")
+      .value("Default", MemberEnd::Default)
+      .value("Stop", MemberEnd::Stop)
+      .value("Extend", MemberEnd::Extend)
+      .value("Wall", MemberEnd::Wall);
   py::enum_<Separation>(m, "Separation")
       .value("Stop", Separation::Stop)
       .value("Separate", Separation::Separate);
@@ -345,7 +350,10 @@ void bind_dampers(py::module_& m) {
       .def_readwrite("contact_point", &Damper::contact_point)
       .def_readwrite("separation", &Damper::separation)
       .def_readwrite("restitution", &Damper::restitution)
-      .def_readwrite("landing_speed", &Damper::landing_speed);
+      .def_readwrite("landing_speed", &Damper::landing_speed)
+      .def_readwrite("start_end", &Damper::start_end)
+      .def_readwrite("finish_end", &Damper::finish_end)
+      .def_readwrite("wall_restitution", &Damper::wall_restitution);
   using Load = System::Load;
   py::class_<Load>(m, "PointLoad", "A point load F(t) = amplitude sin(omega t + phase) + offset, or time_function(t).")
       .def(py::init([](MemberId member, double coordinate, LoadDirection direction, double amplitude, double omega,

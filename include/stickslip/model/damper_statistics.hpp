@@ -192,7 +192,7 @@ class DamperStatistics {
     if (impacts.size() < impacts_seen_) impacts_seen_ = 0;  // the log was cleared
     for (; impacts_seen_ < impacts.size(); ++impacts_seen_) {
       const auto& hit = impacts[impacts_seen_];
-      if (!(hit.t >= window_.t_start && hit.t <= window_.t_end)) continue;
+      if (hit.wall || !(hit.t >= window_.t_start && hit.t <= window_.t_end)) continue;
       ++(hit.to == ContactState::Separated ? bounces_ : landings_)[static_cast<std::size_t>(hit.damper)];
     }
     for (std::size_t i = 0; i < v_eps_.size(); ++i) {

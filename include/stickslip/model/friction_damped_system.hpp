@@ -22,6 +22,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -86,7 +87,7 @@ inline int slip_sign(ContactState s) noexcept {
 ///   | X_i (contact coordinates along the member, D, only with a moving contact)
 ///   | y_d, y_d' (flight coordinates of the S dampers that may separate: S + S, only when S > 0)
 ///   | W_ext, D_visc, D_fric, W_slope (energy-audit integrals, only with the audit on), D_imp
-///   (impact losses, only with the audit on and S > 0).
+///   (impact losses, only with the audit on and S > 0 or a MemberEnd::Wall).
 /// Discrete mode: DamperStates, one ContactState per damper.
 ///
 /// Equations (paper eqs 11-25 generalised; m_i, k_i effective = share x mass/stiffness):
@@ -153,8 +154,9 @@ class FrictionDampedSystem {
     ContactState to;
   };
 
-  /// One impact of a separated damper on its member (docs/model.md, "Separation"), logged by
-  /// `transition`: the impulses and relative velocities of frictional_impact.
+  /// One impact of a separated damper on its member (docs/model.md, "Separation"), or of a moving
+  /// contact on a wall at a member end ("Member ends"), logged by `transition`: the impulses and
+  /// relative velocities.
   struct ImpactEvent {
     Scalar t;               ///< time of the impact (the located gap event)
     Index damper;           ///< index of the damper
@@ -166,6 +168,9 @@ class FrictionDampedSystem {
     Scalar sliding_velocity_after; ///< V after
     Scalar energy_loss;     ///< kinetic energy lost, booked in the audit's impact term
     ContactState to;        ///< Separated (bounce) or the contact state of the landing
+    /// True for the impact of a moving contact on a MemberEnd::Wall (then only the tangential
+    /// impulse and sliding velocities are set; `to` is the damper's state after it).
+    bool wall = false;
   };
 
   /// Why the system stopped a run (kept with the damper and the time).
@@ -255,8 +260,8 @@ class FrictionDampedSystem {
     return options_.energy_audit ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + 2 * num_separable_ : -1;
   }
   /// Number of energy-audit integrals: 0 without the audit, 4 (W_ext, D_visc, D_fric, W_slope),
-  /// 5 when a damper may separate (D_imp, the impact losses, last).
-  Index audit_size() const noexcept { return options_.energy_audit ? (num_separable_ > 0 ? 5 : 4) : 0; }
+  /// 5 when a damper may separate or has a MemberEnd::Wall (D_imp, the impact losses, last).
+  Index audit_size() const noexcept { return options_.energy_audit ? (has_impacts_ ? 5 : 4) : 0; }
   /// 2n + 2D, plus D with a moving contact, plus 2S flight coordinates, plus audit_size().
   Index state_size() const noexcept {
     return 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + 2 * num_separable_ + audit_size();
@@ -379,7 +384,8 @@ class FrictionDampedSystem {
   /// Number of guards in `mode`: per damper its contact guards (CoulombContact::num_guards:
   /// exact laws stuck two, mu_s N -+ f, slipping one, V; regularised laws none; then N when
   /// lift-off is watched; a separated damper one, its gap), then the member-end guards X and
-  /// L - X while it can slide or fly with a moving contact and EndPolicy::Throw.
+  /// L - X while it can slide or fly with a moving contact and an end that does not extend
+  /// (PointDamper::start_end / finish_end, MemberEnd; an extending end's guard is 1).
   Index num_guards(const Mode& mode) const {
     Index count = 0;
     for (Index i = 0; i < D_; ++i) count += guards_of(mode, i);
@@ -415,7 +421,9 @@ class FrictionDampedSystem {
     return CrossingDirection::Either;
   }
 
-  /// Event handling: lift-off and a contact leaving its member stop the run with a reason;
+  /// Event handling: lift-off (Separation::Stop) and a contact leaving its member (MemberEnd::Stop)
+  /// stop the run with a reason; a separable damper's lift-off, a gap closing (impact) and a wall
+  /// are handled as in docs/model.md ("Separation", "Member ends");
   /// stick/slip guards pick a consistent set of new contact states for all dampers (see
   /// docs/model.md) and reset a new stick's sliding velocity to exactly zero.
   TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x);
@@ -519,7 +527,8 @@ class FrictionDampedSystem {
     return options_.watch_lift_off && inertial_[static_cast<std::size_t>(i)];
   }
   bool end_guards_of(const Mode& mode, Index i) const {
-    if (!moving_[static_cast<std::size_t>(i)] || options_.end_policy != EndPolicy::Throw) return false;
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (!moving_[iu] || (end_kind_[iu][0] == MemberEnd::Extend && end_kind_[iu][1] == MemberEnd::Extend)) return false;
     return !has_stick_[static_cast<std::size_t>(i)] || detail::is_slipping(mode[i]) ||
            mode[i] == ContactState::Separated;
   }
@@ -544,8 +553,9 @@ class FrictionDampedSystem {
       k += nc;
       if (end_guards_of(mode, i)) {
         const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
-        g[k++] = e.X[i];
-        g[k++] = L - e.X[i];
+        // (an end that extends keeps a constant guard, so that the guard count stays two)
+        g[k++] = end_kind_[iu][0] != MemberEnd::Extend ? e.X[i] : Scalar(1);
+        g[k++] = end_kind_[iu][1] != MemberEnd::Extend ? L - e.X[i] : Scalar(1);
       }
     }
   }
@@ -633,8 +643,8 @@ class FrictionDampedSystem {
     for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y, &eval_.gap})
       v->setZero(D_);
     flying_.assign(static_cast<std::size_t>(D_), 0);
-    impacts_.reserve(num_separable_ > 0 ? 1024 : 0);
-    if (num_separable_ > 0) {  // the impulse response of transition() works in the probe workspace
+    impacts_.reserve(has_impacts_ ? 1024 : 0);
+    if (has_impacts_) {  // the impulse response of transition() works in the probe workspace
       allocate_linear_part_workspace();
       response_.setZero(n_, 2);
       response_x_.setZero(D_, 2);
@@ -1444,12 +1454,26 @@ class FrictionDampedSystem {
   bool separation_transition(Mode& mode, Scalar t, State& x);
   /// Damper i leaves the member: flight coordinates y_d, y_d' := the member's y, y' under it.
   void separate(Mode& mode, Index i, Scalar t, State& x);
+  /// W = G M_eff^-1 G^T of a damper of mass m at slope s: the member's part impulse_dir_^T
+  /// response_ (after impulse_response) plus the damper's [[(1 + s^2)/m, s/m], [s/m, 1/m]],
+  /// symmetric (the member's part is, up to round-off).
+  Eigen::Matrix<Scalar, 2, 2> inverse_effective_mass(Scalar s, Scalar m) const {
+    Eigen::Matrix<Scalar, 2, 2> W = impulse_dir_.transpose() * response_;
+    W(0, 0) += (Scalar(1) + s * s) / m;
+    W(1, 1) += Scalar(1) / m;
+    W(0, 1) = W(1, 0) = (W(0, 1) + W(1, 0)) / Scalar(2) + s / m;
+    return W;
+  }
   /// The impact of separated damper i (gap = 0): frictional_impact with W from the member's
   /// impulse response; velocities updated, the loss booked; bounce or landing.
   bool impact(Mode& mode, Index i, Scalar t, State& x);
   /// response_ = the member's modal velocity jumps, response_x_ the dampers' x' jumps, for unit
   /// modal impulses impulse_dir_ (two columns), through the other dampers' contact rows.
   void impulse_response(const Mode& mode, const State& x);
+  /// Damper i's contact point reached the wall at end `end` (0: X = 0, 1: X = L): the sliding
+  /// velocity V -> -e V by a tangential impulse through W_t = 1/m + b^T R b (with the normal
+  /// impulse that keeps an inertial contact closed on a sloped member); the loss booked.
+  void wall_impact(Mode& mode, Index i, int end, Scalar t, State& x);
   /// Candidates (dampers that may separate, in contact) whose normal force is not positive leave
   /// the member; the other dampers' states are then resolved again. False when resolve fails.
   bool land_or_separate(Mode& mode, const std::vector<Index>& candidates, Scalar t, State& x);
@@ -1527,6 +1551,11 @@ class FrictionDampedSystem {
   // response workspace of impact() (member velocity and damper velocity jumps per unit impulse).
   std::vector<Index> flight_slot_;
   Index num_separable_ = 0;
+  // Member ends per damper (start X = 0, finish X = L), resolved: Stop, Extend or Wall; whether
+  // the audit books impacts (separation or walls); the walls hit at the current transition.
+  std::vector<std::array<MemberEnd, 2>> end_kind_;
+  bool has_impacts_ = false;
+  std::vector<std::pair<Index, int>> wall_hits_;
   mutable std::vector<char> flying_;
   Matrix response_, response_x_, impulse_dir_;
   StopReason stop_reason_ = StopReason::None;
@@ -1612,6 +1641,11 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
     inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
     const bool separable = d.separation == Separation::Separate && watch_lift_off(i);
     flight_slot_.push_back(separable ? num_separable_++ : Index(-1));
+    const MemberEnd fallback = options_.end_policy == EndPolicy::Throw ? MemberEnd::Stop : MemberEnd::Extend;
+    const auto resolved = [&](MemberEnd e) { return e == MemberEnd::Default ? fallback : e; };
+    end_kind_.push_back({resolved(d.start_end), resolved(d.finish_end)});
+    has_impacts_ = has_impacts_ || separable || end_kind_.back()[0] == MemberEnd::Wall ||
+                   end_kind_.back()[1] == MemberEnd::Wall;
   }
 
   load_psi_.resize(n_, static_cast<Index>(loads_.size()));
@@ -1704,6 +1738,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
   involved.clear();
   lifting_.clear();
   impacting_.clear();
+  wall_hits_.clear();
   for (Index idx : triggered) {
     Index i = 0, local = idx;
     for (; i < D_; ++i) {
@@ -1713,7 +1748,13 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
     }
     STICKSLIP_ASSERT(i < D_);
     const Index nc = contact_guards_of(mode, i);
-    if (local >= nc) return stop(StopReason::LeftMember, i, t, x, mode);
+    if (local >= nc) {  // a member end: a wall reflects, else the run stops
+      const int end = static_cast<int>(local - nc);
+      if (end_kind_[static_cast<std::size_t>(i)][static_cast<std::size_t>(end)] != MemberEnd::Wall)
+        return stop(StopReason::LeftMember, i, t, x, mode);
+      wall_hits_.emplace_back(i, end);
+      continue;
+    }
     if (mode[i] == ContactState::Separated) {  // the gap closed: an impact
       impacting_.push_back(i);
       continue;
@@ -1937,12 +1978,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   const Index y = flight_offset() + flight_slot_[iu], yd = y + num_separable_;
   const Vec2 v(c.yd - x[yd], c.V);
   impulse_response(mode, x);
-  Mat2 W = impulse_dir_.transpose() * response_;
-  W(0, 0) += (Scalar(1) + s * s) / m;
-  W(0, 1) += s / m;
-  W(1, 0) += s / m;
-  W(1, 1) += Scalar(1) / m;
-  W(0, 1) = W(1, 0) = (W(0, 1) + W(1, 0)) / Scalar(2);  // symmetric up to round-off
+  const Mat2 W = inverse_effective_mass(s, m);
   const NewtonImpact<Scalar> newton(d.restitution, d.landing_speed);
   const FrictionalImpact<Scalar> hit = detail::with_law(d.law, [&](const auto& law) {
     using L = std::decay_t<decltype(law)>;
@@ -1979,9 +2015,59 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
 }
 
 template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i, int end, Scalar t, State& x) {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Damper& d = dampers_[iu];
+  const Scalar m = d.effective_mass();
+  const MemberContact c = member_contact(i, x);  // i's shapes now in C_
+  const Scalar V = c.V;
+  if (!(end == 0 ? V < Scalar(0) : V > Scalar(0))) return;  // not moving into the wall
+  // V = x' - b^T q': the impulse L_t on the damper along u acts on the member as -b L_t. A
+  // damper in contact with an inertial normal load keeps its contact through the impact: with
+  // a slope s, V's jump moves it along the normal by s dV, which takes a normal impulse L_n
+  // with gap' = (a - s b)^T q' + s x' - y_d' held at 0 (the rows of impact(); its own contact
+  // rows are taken out of the member's response for this, and its friction impulse left out).
+  const bool normal = inertial_[iu] && mode[i] != ContactState::Separated;
+  const Scalar s = normal ? c.slope : Scalar(0);
+  impulse_dir_.col(0) = C_.col(i) - s * C_.col(D_ + i);
+  impulse_dir_.col(1) = -C_.col(D_ + i);
+  const char inertial = inertial_[iu];
+  inertial_[iu] = 0;  // (no preload in the probe: no rows of its own)
+  impulse_response(mode, x);
+  inertial_[iu] = inertial;
+  const Scalar V_after = -d.wall_restitution * V;
+  Eigen::Matrix<Scalar, 2, 1> L(Scalar(0), Scalar(0));
+  if (normal) {
+    L = inverse_effective_mass(s, m).inverse() * Eigen::Matrix<Scalar, 2, 1>(Scalar(0), V_after - V);
+  } else {
+    L[1] = (V_after - V) / (Scalar(1) / m + impulse_dir_.col(1).dot(response_.col(1)));
+  }
+  x.segment(n_, n_) += response_ * L;
+  for (Index j = 0; j < D_; ++j)
+    if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
+  x[xd_offset() + i] += (s * L[0] + L[1]) / m;
+  const Scalar loss = -L[1] * (V + V_after) / Scalar(2);
+  if (audit_size() > 4) x[energy_offset() + 4] += loss;
+  ContactState to = mode[i];
+  if (mode[i] != ContactState::Separated) {
+    if (V_after == Scalar(0) && has_stick_[iu]) {
+      to = ContactState::Stick;
+      involved_.push_back(i);  // resolve() decides stick or slip
+    } else {
+      to = slip_state(V_after);
+    }
+  }
+  impacts_.push_back(ImpactEvent{t, i, L[0], L[1], Scalar(0), Scalar(0), V, V_after, loss, to, true});
+  events_.push_back(ContactEvent{t, i, mode[i], to});
+  mode[i] = to;
+  cache_valid_ = false;
+}
+
+template <class Scalar_, class Law_, int Modes>
 bool FrictionDampedSystem<Scalar_, Law_, Modes>::separation_transition(Mode& mode, Scalar t, State& x) {
   for (Index i : impacting_)
     if (!impact(mode, i, t, x)) return false;
+  for (const auto& hit : wall_hits_) wall_impact(mode, hit.first, hit.second, t, x);
   for (Index i : lifting_) separate(mode, i, t, x);
   involved_.erase(std::remove_if(involved_.begin(), involved_.end(),
                                  [&](Index i) { return mode[i] == ContactState::Separated; }),

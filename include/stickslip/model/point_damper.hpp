@@ -7,6 +7,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/contact_point.hpp"
 #include "stickslip/model/normal_load.hpp"
+#include "stickslip/model/member_end.hpp"
 #include "stickslip/model/separation.hpp"
 
 #include <Eigen/Core>
@@ -63,6 +64,12 @@ struct PointDamper {
   /// Impacts approaching at or below this relative normal speed land (persistent contact, the
   /// rule that ends a Zeno sequence of bounces; NewtonImpact) [m/s], >= 0 (Separate only).
   Scalar landing_speed = Scalar(1e-4);
+  /// What the moving contact does at X = 0 of the member (docs/model.md, "Member ends").
+  MemberEnd start_end = MemberEnd::Default;
+  /// What the moving contact does at X = L of the member.
+  MemberEnd finish_end = MemberEnd::Default;
+  /// Coefficient of restitution e in [0, 1] of a MemberEnd::Wall: V -> -e V.
+  Scalar wall_restitution = Scalar(1);
 
   /// Effective mass s m in this blade's equations (paper eqs 11-14).
   Scalar effective_mass() const { return share * mass; }
@@ -92,6 +99,9 @@ struct PointDamper {
     detail::require_non_negative(where, "restitution", restitution);
     if (!(restitution <= Scalar(1))) detail::throw_invalid(where, "restitution must be in [0, 1]", restitution);
     detail::require_non_negative(where, "landing_speed", landing_speed);
+    detail::require_non_negative(where, "wall_restitution", wall_restitution);
+    if (!(wall_restitution <= Scalar(1)))
+      detail::throw_invalid(where, "wall_restitution must be in [0, 1]", wall_restitution);
     if (initial_state == ContactState::LiftOff)
       detail::throw_invalid(where, "initial_state cannot be lift-off", "lift_off");
     if (initial_state == ContactState::Separated)  // a run starts in contact; lift-off separates
