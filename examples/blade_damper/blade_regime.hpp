@@ -18,8 +18,10 @@
 
 namespace blade {
 
-/// The paper's three regimes (section 3.3), in the order of increasing preload.
-enum class Regime { GrossSlip, StickSlip, Stick };
+/// The paper's three regimes (section 3.3), in the order of increasing preload, and the
+/// intermittent contact of dampers that leave the platform (--restitution; not a paper regime,
+/// not in kRegimes).
+enum class Regime { GrossSlip, StickSlip, Stick, IntermittentContact };
 
 /// All regimes, in the order of increasing preload.
 inline constexpr std::array<Regime, 3> kRegimes{Regime::GrossSlip, Regime::StickSlip, Regime::Stick};
@@ -28,6 +30,8 @@ inline constexpr std::array<Regime, 3> kRegimes{Regime::GrossSlip, Regime::Stick
 inline constexpr double kGrossSlipBelow = stickslip::regime_gross_slip_below;
 /// A damper sticks when stuck for at least this fraction of the record window.
 inline constexpr double kStickFrom = stickslip::regime_stick_from;
+/// A damper separated (in flight) for at least this fraction of the window is in intermittent contact.
+inline constexpr double kIntermittentFrom = stickslip::regime_intermittent_from;
 
 /// The regime's name everywhere (console, records, plots, docs).
 inline const char* to_string(Regime r) {
@@ -35,6 +39,7 @@ inline const char* to_string(Regime r) {
     case Regime::GrossSlip: return "gross slip";
     case Regime::StickSlip: return "stick-slip";
     case Regime::Stick: return "stick";
+    case Regime::IntermittentContact: return "intermittent contact";
   }
   return "?";
 }
@@ -51,7 +56,8 @@ inline std::string regime_folder(Regime r) {
 /// The rule as one sentence, printed by the demo and written in sweep.json.
 inline const char* regime_rule_text() {
   return "a damper's regime over the last record window from its stick fraction s (fraction of samples "
-         "stuck): gross slip if s < 0.05, stick if s >= 0.999, stick-slip otherwise; a run's regime is "
+         "stuck): gross slip if s < 0.05, stick if s >= 0.999, stick-slip otherwise, unless it was separated "
+         "from the platform (--restitution) for at least 0.01 of the samples: intermittent contact; a run's regime is "
          "its dampers' common regime (none when they differ or the run stopped)";
 }
 
@@ -65,6 +71,17 @@ inline Regime damper_regime(double stick_fraction) {
   if (stick_fraction < kGrossSlipBelow) return Regime::GrossSlip;
   if (stick_fraction >= kStickFrom) return Regime::Stick;
   return Regime::StickSlip;
+}
+
+/// The rule with separation: intermittent contact when the damper was separated for at least
+/// kIntermittentFrom of the window (separated_fraction), else damper_regime(stick_fraction).
+/// Throws std::invalid_argument unless both fractions are in [0, 1].
+inline Regime damper_regime(double stick_fraction, double separated_fraction) {
+  if (!(separated_fraction >= 0 && separated_fraction <= 1))
+    throw std::invalid_argument("damper_regime: separated_fraction must be in [0, 1], got " +
+                                std::to_string(separated_fraction));
+  const Regime by_stick = damper_regime(stick_fraction);
+  return separated_fraction >= kIntermittentFrom ? Regime::IntermittentContact : by_stick;
 }
 
 /// A run's regime: the regime both dampers share; none when they differ or one is unknown

@@ -46,6 +46,7 @@ struct Sample {
 struct DamperRegime {
   double stick_fraction = 0;          ///< fraction of samples stuck
   double transitions_per_period = 0;  ///< contact switches per excitation period
+  double separated_fraction = 0;      ///< fraction of samples separated from the platform (--restitution)
   /// damper_regime(stick_fraction) (blade_regime.hpp); none when the run stopped before the window.
   std::optional<Regime> regime;
   /// The regime's name, or "not reached".
@@ -171,11 +172,14 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   // Window statistics.
   const double tw = settings.duration - settings.record_window;
   double sum2 = 0;
-  int stuck[2] = {0, 0};
+  int stuck[2] = {0, 0}, flying[2] = {0, 0};
   for (const Sample& s : rec.window) {
     rec.tip_max = std::max(rec.tip_max, std::abs(s.tip));
     sum2 += s.tip * s.tip;
-    for (int i = 0; i < 2; ++i) stuck[i] += s.state[i] == static_cast<int>(ContactState::Stick);
+    for (int i = 0; i < 2; ++i) {
+      stuck[i] += s.state[i] == static_cast<int>(ContactState::Stick);
+      flying[i] += s.state[i] == static_cast<int>(ContactState::Separated);
+    }
   }
   // A run stopped before the recording window has no window statistics (NaN: null in the JSON).
   const bool reached = !rec.window.empty();
@@ -195,12 +199,13 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   for (int i = 0; i < 2; ++i) {
     DamperRegime& r = rec.regime[i];
     if (!reached) {
-      r.stick_fraction = r.transitions_per_period = none;
+      r.stick_fraction = r.transitions_per_period = r.separated_fraction = none;
       continue;
     }
     r.stick_fraction = stuck[i] / count;
     r.transitions_per_period = static_cast<double>(switches[i]) / periods;
-    r.regime = damper_regime(r.stick_fraction);
+    r.separated_fraction = flying[i] / count;
+    r.regime = damper_regime(r.stick_fraction, r.separated_fraction);
   }
   rec.common = common_regime(rec.regime[0].regime, rec.regime[1].regime);
   rec.overall_regime = rec.common ? to_string(*rec.common) : rec.regime[0].name() + " / " + rec.regime[1].name();

@@ -5,6 +5,8 @@
 /// docs/blade_damper.md: a T-shaped frame, the blade clamped at its root, the platform centred on
 /// the blade tip (rigid joint), the dampers under the middle of each platform wing.
 
+#include "blade_contact_options.hpp"
+
 #include <stickslip/stickslip.hpp>
 
 #include <memory>
@@ -40,6 +42,7 @@ struct BladeParameters {
   /// Friction law: exact Coulomb (default) or regularised tanh with this v_eps when > 0.
   double regularised_v_eps = 0.0;
   stickslip::ModelOptions<double> model{};
+  ContactOptions contact{};  ///< separation at lift-off (--restitution), blade_contact_options.hpp
 
   /// Damper mass from the preload: N0 = share m r Omega^2  (paper: N0 = F/2 = m r Omega^2 / 2).
   double damper_mass() const { return preload / (share * radius * spin * spin); }
@@ -91,6 +94,7 @@ inline BladeScene make_blade_scene(const BladeParameters& p) {
   std::vector<PointDamper<double>> dampers;
   dampers.emplace_back(s.platform_member, X_left, m, p.k, p.preload, law, p.share);
   dampers.emplace_back(s.platform_member, X_right, m, p.k, p.preload, law, p.share);
+  apply_contact_options(p.contact, dampers);
   std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(
       s.blade_member, p.y0, LoadDirection::GlobalX, p.force, p.force_omega)};
   s.system = std::make_unique<BladeScene::System>(f, s.basis, std::move(dampers), std::move(loads), p.model);

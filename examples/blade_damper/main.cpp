@@ -102,7 +102,7 @@ Cli parse(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
-      std::cout << kHelp;
+      std::cout << kHelp << blade::contact_options_help();
       std::exit(0);
     } else if (a == "--demo") {
       c.preloads = {1.0, 12.0, 26.0};
@@ -147,6 +147,7 @@ Cli parse(int argc, char** argv) {
       c.params.model.normal_load = NormalLoad::Constant;
     } else if (a == "--fixed-contact") {
       c.params.model.moving_contact = false;
+    } else if (blade::parse_contact_option(a, need, i, c.params.contact, c.params.model)) {
     } else if (a == "--beyond-ends") {
       c.params.model.end_policy = EndPolicy::Extrapolate;
     } else if (a == "--regularised") {

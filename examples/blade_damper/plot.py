@@ -130,6 +130,7 @@ def plot_sweep(out, info):
     s = read_csv(path)
     names = [r["name"] for r in info.get("regimes", [])]
     colours = dict(zip(names, ["tab:red", "tab:orange", "tab:blue"]))
+    colours["intermittent contact"] = "tab:purple"  # dampers leaving the platform (--restitution)
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.plot(s["preload_N"], s["energy_density_m2"], "-", color="0.6", lw=1)
     stopped = [p for p, r in zip(s["preload_N"], s["regime"]) if r in ("lift-off", "left platform", "run stopped")]

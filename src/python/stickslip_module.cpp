@@ -299,7 +299,16 @@ void bind_dampers(py::module_& m) {
       .value("Stick", ContactState::Stick)
       .value("SlipPositive", ContactState::SlipPositive)
       .value("SlipNegative", ContactState::SlipNegative)
-      .value("LiftOff", ContactState::LiftOff);
+      .value("LiftOff", ContactState::LiftOff)
+      .value("Separated", ContactState::Separated);
+  py::enum_<MemberEnd>(m, "MemberEnd")
+      .value("Default", MemberEnd::Default)
+      .value("Stop", MemberEnd::Stop)
+      .value("Extend", MemberEnd::Extend)
+      .value("Wall", MemberEnd::Wall);
+  py::enum_<Separation>(m, "Separation")
+      .value("Stop", Separation::Stop)
+      .value("Separate", Separation::Separate);
   py::enum_<LoadDirection>(m, "LoadDirection")
       .value("GlobalX", LoadDirection::GlobalX)
       .value("GlobalY", LoadDirection::GlobalY)
@@ -339,7 +348,13 @@ void bind_dampers(py::module_& m) {
       .def_readwrite("side", &Damper::side)
       .def_readwrite("initial_state", &Damper::initial_state)
       .def_readwrite("normal_load", &Damper::normal_load)
-      .def_readwrite("contact_point", &Damper::contact_point);
+      .def_readwrite("contact_point", &Damper::contact_point)
+      .def_readwrite("separation", &Damper::separation)
+      .def_readwrite("restitution", &Damper::restitution)
+      .def_readwrite("landing_speed", &Damper::landing_speed)
+      .def_readwrite("start_end", &Damper::start_end)
+      .def_readwrite("finish_end", &Damper::finish_end)
+      .def_readwrite("wall_restitution", &Damper::wall_restitution);
   using Load = System::Load;
   py::class_<Load>(m, "PointLoad", "A point load F(t) = amplitude sin(omega t + phase) + offset, or time_function(t).")
       .def(py::init([](MemberId member, double coordinate, LoadDirection direction, double amplitude, double omega,
@@ -372,12 +387,13 @@ void bind_system(py::module_& m) {
       .def_readonly("damper", &System::ContactEvent::damper)
       .def_readonly("from_state", &System::ContactEvent::from)
       .def_readonly("to_state", &System::ContactEvent::to);
-  py::class_<System::EnergyBalance>(m, "EnergyBalance", "E(t) - E0 = W_ext - D_visc - D_fric + W_slope + residual.")
+  py::class_<System::EnergyBalance>(m, "EnergyBalance", "E(t) - E0 = W_ext - D_visc - D_fric + W_slope - D_imp + residual.")
       .def_readonly("mechanical", &System::EnergyBalance::mechanical)
       .def_readonly("external_work", &System::EnergyBalance::external_work)
       .def_readonly("viscous_dissipation", &System::EnergyBalance::viscous_dissipation)
       .def_readonly("friction_dissipation", &System::EnergyBalance::friction_dissipation)
       .def_readonly("slope_work", &System::EnergyBalance::slope_work)
+      .def_readonly("impact_loss", &System::EnergyBalance::impact_loss)
       .def_readonly("residual", &System::EnergyBalance::residual);
   py::enum_<System::StopReason>(m, "StopReason")
       .value("None_", System::StopReason::None)
@@ -397,6 +413,8 @@ void bind_system(py::module_& m) {
       .def_property_readonly("x_offset", &System::x_offset)
       .def_property_readonly("xd_offset", &System::xd_offset)
       .def_property_readonly("contact_offset", &System::contact_offset)
+      .def_property_readonly("flight_offset", &System::flight_offset)
+      .def_property_readonly("num_separable", &System::num_separable)
       .def_property_readonly("energy_offset", &System::energy_offset)
       .def_property_readonly("options", &System::options)
       .def_property_readonly("dampers", &System::dampers)
@@ -503,7 +521,8 @@ void bind_simulate(py::module_& m) {
       .value("Stick", DamperRegime::Stick)
       .value("StickSlip", DamperRegime::StickSlip)
       .value("GrossSlip", DamperRegime::GrossSlip)
-      .value("NotReached", DamperRegime::NotReached);
+      .value("NotReached", DamperRegime::NotReached)
+      .value("IntermittentContact", DamperRegime::IntermittentContact);
   m.def("regime_name", [](DamperRegime r) { return std::string(to_string(r)); }, py::arg("regime"));
   using Stats = DamperWindowStatistics<double>;
   py::class_<Stats>(m, "DamperWindowStatistics", "One damper's statistics over the window (DamperStatistics).")
@@ -512,6 +531,10 @@ void bind_simulate(py::module_& m) {
       .def_readonly("stick_fraction", &Stats::stick_fraction)
       .def_readonly("switches", &Stats::switches)
       .def_readonly("switches_per_period", &Stats::switches_per_period)
+      .def_readonly("separated_time", &Stats::separated_time)
+      .def_readonly("separated_fraction", &Stats::separated_fraction)
+      .def_readonly("bounces", &Stats::bounces)
+      .def_readonly("landings", &Stats::landings)
       .def_readonly("regime", &Stats::regime);
   py::class_<StepperStats>(m, "StepperStats")
       .def_readonly("accepted_steps", &StepperStats::accepted_steps)

@@ -195,3 +195,24 @@ TEST(BladeRegime, NamesEveryFractionAsTheLibrarysClassifyRegime) {
 }
 
 }  // namespace blade_regime_test
+
+namespace blade_regime_test_separation {
+
+// The rule with separation (--restitution): a damper separated for at least 1 % of the window
+// is in intermittent contact whatever its stick fraction, the library's threshold; below, the
+// stick-fraction rule; fractions outside [0, 1] are refused.
+TEST(BladeRegime, IntermittentContactFromTheSeparatedFraction) {
+  using blade::Regime;
+  EXPECT_EQ(blade::damper_regime(0.5, 0.01), Regime::IntermittentContact);
+  EXPECT_EQ(blade::damper_regime(1.0, 0.2), Regime::IntermittentContact);
+  EXPECT_EQ(blade::damper_regime(0.5, 0.0099), Regime::StickSlip);
+  EXPECT_EQ(blade::damper_regime(1.0, 0.0), Regime::Stick);
+  EXPECT_EQ(blade::kIntermittentFrom, stickslip::regime_intermittent_from);
+  EXPECT_STREQ(blade::to_string(Regime::IntermittentContact),
+               stickslip::to_string(stickslip::DamperRegime::IntermittentContact));
+  EXPECT_THROW((void)blade::damper_regime(0.5, 1.5), std::invalid_argument);
+  EXPECT_THROW((void)blade::damper_regime(-0.1, 0.0), std::invalid_argument);
+  EXPECT_EQ(blade::kRegimes.size(), 3u);  // not one of the paper's regimes (no representative)
+}
+
+}  // namespace blade_regime_test_separation

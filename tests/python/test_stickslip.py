@@ -319,3 +319,37 @@ def test_periodic_orbit_rejects_a_bad_request_naming_it():
         ss.find_periodic_orbit(system, 0.01, monodromy="guess")
     with pytest.raises(ValueError, match="period"):
         ss.find_periodic_orbit(system, -1.0)
+
+
+def test_a_damper_without_preload_that_may_separate_starts_in_flight():
+    # Separation.Separate adds the flight coordinates y_d, y_d' after the contact coordinates and
+    # the impact-loss term to the audit (docs/model.md, "Separation"); at rest without preload
+    # N = 0 is not positive, so make_consistent lets the damper leave instead of refusing the start.
+    f, m, basis = cantilever()
+    d = ss.PointDamper(m, 0.1, 0.01, 1e3, 0.0, ss.CoulombLaw(0.35, 0.3))
+    d.separation = ss.Separation.Separate
+    d.restitution = 0.5
+    sys = ss.FrictionDampedSystem(f, basis, [d])
+    n = sys.num_modes
+    assert sys.num_separable == 1
+    assert sys.flight_offset == 2 * n + 3  # q, q', x, x', X
+    assert sys.energy_offset == 2 * n + 5 and sys.state_size == 2 * n + 10
+    ok, mode, x = sys.make_consistent(sys.requested_mode(), 0.0, sys.initial_state())
+    assert ok and mode == [ss.ContactState.Separated]
+    run = ss.simulate(sys, 0.01, ss.RunOptions("dopri5"))
+    assert run.energy.impact_loss == 0.0 and abs(run.energy.residual) < 1e-12
+
+
+def test_member_end_choices_are_bound():
+    f, m, basis = cantilever()
+    d = ss.PointDamper(m, 0.1, 0.01, 1e3, 1.0, ss.CoulombLaw(0.35, 0.3))
+    assert d.start_end == ss.MemberEnd.Default and d.wall_restitution == 1.0
+    d.finish_end = ss.MemberEnd.Wall
+    d.wall_restitution = 0.5
+    sys = ss.FrictionDampedSystem(f, basis, [d])
+    assert sys.dampers[0].finish_end == ss.MemberEnd.Wall
+    n = sys.num_modes
+    assert sys.energy_offset == 2 * n + 3 and sys.state_size == 2 * n + 8  # a wall adds D_imp
+    d.wall_restitution = 1.5
+    with pytest.raises(ValueError, match="wall_restitution"):
+        ss.FrictionDampedSystem(f, basis, [d])

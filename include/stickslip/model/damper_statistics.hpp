@@ -26,7 +26,9 @@ enum class DamperRegime : std::uint8_t {
   Stick,       ///< stuck at least 99.9 % of the time
   StickSlip,   ///< in between
   GrossSlip,   ///< stuck less than 5 % of the time (at most brief stops at velocity reversals)
-  NotReached   ///< the run did not reach the window (no statistics)
+  NotReached,  ///< the run did not reach the window (no statistics)
+  /// Separated from the member (free flight, Separation::Separate) at least 1 % of the time
+  IntermittentContact
 };
 
 /// "stick", "stick-slip", "gross slip", "not reached".
@@ -36,6 +38,7 @@ inline const char* to_string(DamperRegime r) noexcept {
     case DamperRegime::StickSlip: return "stick-slip";
     case DamperRegime::GrossSlip: return "gross slip";
     case DamperRegime::NotReached: return "not reached";
+    case DamperRegime::IntermittentContact: return "intermittent contact";
   }
   return "unknown";
 }
@@ -57,6 +60,21 @@ DamperRegime classify_regime(Scalar stick_fraction) noexcept {
   return DamperRegime::StickSlip;
 }
 
+/// classify_regime: a damper separated from its member (in flight) at least this fraction of the
+/// window is in intermittent contact, whatever its stick fraction.
+inline constexpr double regime_intermittent_from = 0.01;
+
+/// The rule with separation: separated_fraction >= regime_intermittent_from (0.01) is
+/// IntermittentContact; otherwise classify_regime(stick_fraction). NaN stick fraction (nothing
+/// observed) NotReached.
+template <class Scalar>
+DamperRegime classify_regime(Scalar stick_fraction, Scalar separated_fraction) noexcept {
+  using std::isnan;
+  if (isnan(stick_fraction)) return DamperRegime::NotReached;
+  if (separated_fraction >= Scalar(regime_intermittent_from)) return DamperRegime::IntermittentContact;
+  return classify_regime(stick_fraction);
+}
+
 /// The window [t_start, t_end] of DamperStatistics and the excitation period the switches are
 /// counted per [s].
 template <class Scalar>
@@ -74,7 +92,12 @@ struct DamperWindowStatistics {
   Scalar stick_fraction{};        ///< stick_time / observed_time (NaN when nothing was observed)
   Eigen::Index switches = 0;      ///< contact-state changes (stick <-> slip, slip reversals) in the window
   Scalar switches_per_period{};   ///< switches * period / observed_time (NaN when nothing observed)
-  DamperRegime regime = DamperRegime::NotReached;  ///< classify_regime(stick_fraction)
+  Scalar separated_time{};        ///< time separated from the member (in flight) within the window [s]
+  Scalar separated_fraction{};    ///< separated_time / observed_time (NaN when nothing was observed)
+  Eigen::Index bounces = 0;       ///< impacts in the window after which the damper flew again
+  Eigen::Index landings = 0;      ///< impacts in the window after which it stayed in contact
+  /// classify_regime(stick_fraction, separated_fraction)
+  DamperRegime regime = DamperRegime::NotReached;
 };
 
 /// Observer (docs/ode.md) accumulating, per damper of a FrictionDampedSystem, the time stuck and
@@ -118,6 +141,10 @@ class DamperStatistics {
     const std::size_t D = system.dampers().size();
     v_eps_.resize(D);
     stick_time_.assign(D, Scalar(0));
+    separated_time_.assign(D, Scalar(0));
+    bounces_.assign(D, 0);
+    landings_.assign(D, 0);
+    impacts_seen_ = system.impacts().size();
     switches_.assign(D, 0);
     prev_V_.assign(D, Scalar(0));
     for (std::size_t i = 0; i < D; ++i) {
@@ -140,6 +167,11 @@ class DamperStatistics {
     if (b > a) observed_ += b - a;
     const typename System::Evaluation* e = regularised_ ? &system_.evaluate(mode, t, x) : nullptr;
     for (std::size_t i = 0; i < v_eps_.size(); ++i) {
+      if (mode[static_cast<Index>(i)] == ContactState::Separated) {  // in flight: neither stuck nor sliding on it
+        if (b > a) separated_time_[i] += b - a;
+        if (e) prev_V_[i] = e->V[static_cast<Index>(i)];
+        continue;
+      }
       if (std::isnan(v_eps_[i])) {
         if (b > a && mode[static_cast<Index>(i)] == ContactState::Stick) stick_time_[i] += b - a;
         continue;
@@ -152,9 +184,17 @@ class DamperStatistics {
     return true;
   }
 
-  /// After each transition: a damper whose state changed switched (when t is in the window).
+  /// After each transition: a damper whose state changed switched (when t is in the window);
+  /// the impacts the system logged in it (FrictionDampedSystem::impacts) are bounces or landings.
   void on_event(const EventRecord<Scalar, Mode>& record, const State& x_after) {
     const bool inside = record.t >= window_.t_start && record.t <= window_.t_end;
+    const auto& impacts = system_.impacts();
+    if (impacts.size() < impacts_seen_) impacts_seen_ = 0;  // the log was cleared
+    for (; impacts_seen_ < impacts.size(); ++impacts_seen_) {
+      const auto& hit = impacts[impacts_seen_];
+      if (hit.wall || !(hit.t >= window_.t_start && hit.t <= window_.t_end)) continue;
+      ++(hit.to == ContactState::Separated ? bounces_ : landings_)[static_cast<std::size_t>(hit.damper)];
+    }
     for (std::size_t i = 0; i < v_eps_.size(); ++i) {
       const Index ii = static_cast<Index>(i);
       if (std::isnan(v_eps_[i]) && inside && record.from[ii] != record.to[ii]) ++switches_[i];
@@ -179,7 +219,11 @@ class DamperStatistics {
     s.switches = switches_[iu];
     s.stick_fraction = observed_ > 0 ? stick_time_[iu] / observed_ : none;
     s.switches_per_period = observed_ > 0 ? Scalar(switches_[iu]) * window_.period / observed_ : none;
-    s.regime = classify_regime(s.stick_fraction);
+    s.separated_time = separated_time_[iu];
+    s.separated_fraction = observed_ > 0 ? separated_time_[iu] / observed_ : none;
+    s.bounces = bounces_[iu];
+    s.landings = landings_[iu];
+    s.regime = classify_regime(s.stick_fraction, s.separated_fraction);
     return s;
   }
 
@@ -223,8 +267,9 @@ class DamperStatistics {
   Scalar observed_ = 0;
   bool regularised_ = false;
   std::vector<Scalar> v_eps_;  // NaN for a damper with a stick state
-  std::vector<Scalar> stick_time_, prev_V_;
-  std::vector<Index> switches_;
+  std::vector<Scalar> stick_time_, prev_V_, separated_time_;
+  std::vector<Index> switches_, bounces_, landings_;
+  std::size_t impacts_seen_ = 0;  // entries of system.impacts() already counted
 };
 
 }  // namespace stickslip

@@ -22,6 +22,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -84,7 +85,9 @@ inline int slip_sign(ContactState s) noexcept {
 /// Continuous state, in this order (offsets from the accessors):
 ///   q (n modal coordinates) | q' (n) | x_i (damper displacements along u, D) | x_i' (D)
 ///   | X_i (contact coordinates along the member, D, only with a moving contact)
-///   | W_ext, D_visc, D_fric, W_slope (energy-audit integrals, only with the audit on).
+///   | y_d, y_d' (flight coordinates of the S dampers that may separate: S + S, only when S > 0)
+///   | W_ext, D_visc, D_fric, W_slope (energy-audit integrals, only with the audit on), D_imp
+///   (impact losses, only with the audit on and S > 0 or a MemberEnd::Wall).
 /// Discrete mode: DamperStates, one ContactState per damper.
 ///
 /// Equations (paper eqs 11-25 generalised; m_i, k_i effective = share x mass/stiffness):
@@ -95,6 +98,10 @@ inline int slip_sign(ContactState s) noexcept {
 ///   V_i = X_i' = x_i' - q'^T b_i  (sliding velocity of the damper relative to the member)
 /// with a_i = psi_w(X_i), b_i = psi_u(X_i), a' = psi_w', a'' = psi_w'', s_i = q^T psi_w'(X_i).
 /// Slip: f_i = -sign(V_i) mu_k N_i (15-16); stick: V_i = 0 and f_i is the constraint force.
+/// Separated (PointDamper::separation = Separate, after N_i reached 0): N_i = f_i = 0,
+///   m_i y_d'' = N0_i (the preload pushes the damper back towards the member), guard
+///   gap = y_i - y_d >= 0; at gap = 0 an impact (frictional_impact through the member's
+///   impulse response) bounces or lands it (docs/model.md, "Separation").
 /// All unknowns (q'', N, f, x'') are solved together: known forces (constant N, f = -mu N of a
 /// slipping damper) are eliminated, and the U <= 2D remaining ones solved in the cheaper of the
 /// capacitance (Woodbury) form, a U x U system, and the mode-space form of the
@@ -147,6 +154,25 @@ class FrictionDampedSystem {
     ContactState to;
   };
 
+  /// One impact of a separated damper on its member (docs/model.md, "Separation"), or of a moving
+  /// contact on a wall at a member end ("Member ends"), logged by `transition`: the impulses and
+  /// relative velocities.
+  struct ImpactEvent {
+    Scalar t;               ///< time of the impact (the located gap event)
+    Index damper;           ///< index of the damper
+    Scalar normal_impulse;  ///< L_n >= 0, pushing the damper off the member
+    Scalar tangential_impulse;  ///< L_t on the damper along u (the member receives -L_t psi_u)
+    Scalar normal_velocity;     ///< v_n = gap' before the impact (< 0: approaching)
+    Scalar normal_velocity_after;  ///< gap' after: -e v_n (bounce) or 0 (landing)
+    Scalar sliding_velocity;       ///< V before the impact
+    Scalar sliding_velocity_after; ///< V after
+    Scalar energy_loss;     ///< kinetic energy lost, booked in the audit's impact term
+    ContactState to;        ///< Separated (bounce) or the contact state of the landing
+    /// True for the impact of a moving contact on a MemberEnd::Wall (then only the tangential
+    /// impulse and sliding velocities are set; `to` is the damper's state after it).
+    bool wall = false;
+  };
+
   /// Why the system stopped a run (kept with the damper and the time).
   enum class StopReason { None, LiftOff, LeftMember, NoConsistentState };
 
@@ -160,7 +186,9 @@ class FrictionDampedSystem {
     Vector xdd;    ///< damper accelerations
     Vector X;      ///< contact coordinates
     Vector slope;  ///< member slope q^T psi_w'(X) at the contacts
-    Vector y;      ///< damper displacements along the contact normal, y = q^T psi_w(X) (eq 17)
+    Vector y;      ///< damper displacements along the contact normal, y = q^T psi_w(X) (eq 17); y_d in flight
+    /// Gap y_member - y_d of a separated damper (>= 0 in flight, its guard), 0 in contact.
+    Vector gap;
     /// False when a force or acceleration is not finite (an overflowing state): rhs()
     /// then returns NaN for the stepper's finiteness check.
     bool finite = true;
@@ -182,7 +210,7 @@ class FrictionDampedSystem {
     bool pivoted = false;
   };
 
-  /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope.
+  /// Terms of the energy balance  E(t) - E(t0) = W_ext - D_visc - D_fric + W_slope - D_imp.
   struct EnergyBalance {
     Scalar mechanical;   ///< E(t): modal kinetic + strain + dampers' kinetic, spring, preload potential
     /// W_ext = integral of sum_l F_l(t) psi_l^T q' dt, work of the point loads.
@@ -192,7 +220,9 @@ class FrictionDampedSystem {
     /// D_fric = -integral of sum_i f_i V_i dt >= 0, dissipated by friction.
     Scalar friction_dissipation;
     Scalar slope_work;   ///< work of the normal forces as the contacts slide over a sloped member
-    Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope)
+    /// D_imp: kinetic energy lost in the impacts of separated dampers (0 without Separate dampers).
+    Scalar impact_loss = Scalar(0);
+    Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope - D_imp)
   };
 
   /// Builds the system; throws std::invalid_argument on a bad damper, load or option.
@@ -215,13 +245,26 @@ class FrictionDampedSystem {
   Index xd_offset() const noexcept { return 2 * n_ + D_; }
   /// Offset of the contact coordinates (-1 without a moving contact).
   Index contact_offset() const noexcept { return options_.moving_contact ? 2 * n_ + 2 * D_ : -1; }
+  /// Offset of the flight coordinates (-1 when no damper may separate): y_d of the S dampers that
+  /// may separate (S entries, in damper order, slot flight_slot(i)), then their y_d' (S).
+  Index flight_offset() const noexcept {
+    return num_separable_ > 0 ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) : -1;
+  }
+  /// S, the number of dampers that may separate (PointDamper::separation = Separate with an
+  /// inertial normal load and lift-off watched).
+  Index num_separable() const noexcept { return num_separable_; }
+  /// Slot of damper i among the flight coordinates (0 .. S - 1), -1 when it cannot separate.
+  Index flight_slot(Index i) const { return flight_slot_[static_cast<std::size_t>(i)]; }
   /// Offset of the energy-audit integrals (-1 without the audit).
   Index energy_offset() const noexcept {
-    return options_.energy_audit ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) : -1;
+    return options_.energy_audit ? 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + 2 * num_separable_ : -1;
   }
-  /// 2n + 2D, plus D with a moving contact, plus 4 with the energy audit.
+  /// Number of energy-audit integrals: 0 without the audit, 4 (W_ext, D_visc, D_fric, W_slope),
+  /// 5 when a damper may separate or has a MemberEnd::Wall (D_imp, the impact losses, last).
+  Index audit_size() const noexcept { return options_.energy_audit ? (has_impacts_ ? 5 : 4) : 0; }
+  /// 2n + 2D, plus D with a moving contact, plus 2S flight coordinates, plus audit_size().
   Index state_size() const noexcept {
-    return 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + (options_.energy_audit ? 4 : 0);
+    return 2 * n_ + 2 * D_ + (options_.moving_contact ? D_ : 0) + 2 * num_separable_ + audit_size();
   }
   /// The modelling switches the system was built with.
   const ModelOptions<Scalar>& options() const noexcept { return options_; }
@@ -245,6 +288,9 @@ class FrictionDampedSystem {
   ///    damper j's contacts and the sum runs over the regularised dampers (they couple through the
   ///    member): "damper i regularised friction slope ...". Exact on a rigid member (beta = 0:
   ///    m x'' + mu'(0) N0 x' + k x = 0); 2 sigma bounds every real rate of the linearised system.
+  ///  * every damper that may separate: its flight y_d'' = N0 / m, rate 0 (a separated
+  ///    damper's tangential oscillator is the slip oscillator above; the member without its
+  ///    contact forces has the modes' rates): "damper i flight ...".
   /// Stuck dampers need no rates of their own: in any stick pattern and at any contact point the
   /// structure's squared frequencies are Rayleigh quotients
   /// (q^T Omega^2 q + sum k (b^T q)^2) / (q^T q + sum m (b^T q)^2 + ...), mediants of the omega_j^2
@@ -292,8 +338,8 @@ class FrictionDampedSystem {
     return m;
   }
 
-  /// Checks that x has state_size() entries, mode has num_dampers() states and none of them is
-  /// ContactState::Separated, which this model does not have (two comparisons and one per damper;
+  /// Checks that x has state_size() entries, mode has num_dampers() states and that only dampers
+  /// that may separate (flight_slot(i) >= 0) are ContactState::Separated (two comparisons and one per damper;
   /// done by evaluate() before every solve, so by rhs, guards, make_consistent and the outputs,
   /// and by simulate() before the first step).
   /// \throws std::invalid_argument naming `where`, the expected and the given sizes, or the
@@ -306,11 +352,12 @@ class FrictionDampedSystem {
       throw std::invalid_argument(std::string(where) + ": mode (DamperStates) has " +
                                   std::to_string(mode.size()) + " states, expected num_dampers() = " +
                                   std::to_string(D_));
-    for (Index i = 0; i < D_; ++i)  // the model has no separated damper yet (issue #22)
-      if (mode[i] == ContactState::Separated)
+    for (Index i = 0; i < D_; ++i)  // only a damper with Separation::Separate has a flight state
+      if (mode[i] == ContactState::Separated && flight_slot_[static_cast<std::size_t>(i)] < 0)
         throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) +
-                                    "] is separated; FrictionDampedSystem models contact that "
-                                    "stays closed or stops at lift-off");
+                                    "] is separated, but damper " + std::to_string(i) +
+                                    " cannot separate (PointDamper::separation = Stop, or a "
+                                    "constant normal load, or lift-off not watched)");
   }
 
   // ---- hybrid-system concept ------------------------------------------------------------------
@@ -329,14 +376,16 @@ class FrictionDampedSystem {
       dxdt[o + 1] = qd.dot(modal(modal_damping_).cwiseProduct(qd));
       dxdt[o + 2] = -e.f.dot(e.V);
       dxdt[o + 3] = options_.moving_contact ? -(e.N.array() * e.slope.array() * e.V.array()).sum() : Scalar(0);
+      if (audit_size() > 4) dxdt[o + 4] = Scalar(0);  // D_imp changes at impacts only
     }
     if (!e.finite) dxdt.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
   }
 
   /// Number of guards in `mode`: per damper its contact guards (CoulombContact::num_guards:
   /// exact laws stuck two, mu_s N -+ f, slipping one, V; regularised laws none; then N when
-  /// lift-off is watched), then the member-end guards X and L - X while it can slide with a
-  /// moving contact and EndPolicy::Throw.
+  /// lift-off is watched; a separated damper one, its gap), then the member-end guards X and
+  /// L - X while it can slide or fly with a moving contact and an end that does not extend
+  /// (PointDamper::start_end / finish_end, MemberEnd; an extending end's guard is 1).
   Index num_guards(const Mode& mode) const {
     Index count = 0;
     for (Index i = 0; i < D_; ++i) count += guards_of(mode, i);
@@ -372,7 +421,9 @@ class FrictionDampedSystem {
     return CrossingDirection::Either;
   }
 
-  /// Event handling: lift-off and a contact leaving its member stop the run with a reason;
+  /// Event handling: lift-off (Separation::Stop) and a contact leaving its member (MemberEnd::Stop)
+  /// stop the run with a reason; a separable damper's lift-off, a gap closing (impact) and a wall
+  /// are handled as in docs/model.md ("Separation", "Member ends");
   /// stick/slip guards pick a consistent set of new contact states for all dampers (see
   /// docs/model.md) and reset a new stick's sliding velocity to exactly zero.
   TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x);
@@ -401,8 +452,15 @@ class FrictionDampedSystem {
   /// the observer's EventRecords of the dampers whose state differs between `from` and `to`, plus
   /// make_consistent()'s switches (tests/model/event_log_test.cpp).
   const std::vector<ContactEvent>& events() const noexcept { return events_; }
-  /// Empties the event log (e.g. before a new run from the same system).
-  void clear_events() { events_.clear(); }
+  /// Impacts of separated dampers logged since construction or the last clear_events(), one per
+  /// impact (a bounce is also logged in events() as a switch Separated -> Separated, a landing
+  /// as Separated -> its contact state).
+  const std::vector<ImpactEvent>& impacts() const noexcept { return impacts_; }
+  /// Empties the event and impact logs (e.g. before a new run from the same system).
+  void clear_events() {
+    events_.clear();
+    impacts_.clear();
+  }
   /// Why the system last stopped a run or refused a start (None when it never did): set by
   /// transition() (LiftOff, LeftMember, NoConsistentState) and by make_consistent() (LiftOff at
   /// t0; a false return without lift-off leaves it as it was); never reset.
@@ -426,15 +484,16 @@ class FrictionDampedSystem {
     b.viscous_dissipation = x[o + 1];
     b.friction_dissipation = x[o + 2];
     b.slope_work = x[o + 3];
-    b.residual = (b.mechanical - E0) -
-                 (b.external_work - b.viscous_dissipation - b.friction_dissipation + b.slope_work);
+    if (audit_size() > 4) b.impact_loss = x[o + 4];
+    b.residual = (b.mechanical - E0) - (b.external_work - b.viscous_dissipation - b.friction_dissipation +
+                                        b.slope_work - b.impact_loss);
     return b;
   }
 
   // ---- linear part per discrete mode (issue #19; docs/model.md, "Linear part per discrete mode")
   /// Number of linear components of linear_part(): the state without the energy-audit integrals,
   /// which are quadratures (their rates depend on t and the other components only).
-  Index linear_size() const noexcept { return state_size() - (options_.energy_audit ? 4 : 0); }
+  Index linear_size() const noexcept { return state_size() - audit_size(); }
 
   /// The linear part of mode `mode` at (t, x) (stickslip/ode/linear_part.hpp):
   ///   x_L' = A_m x_L + b_m(t) + r_m(t, x),   x_L = (q, q', x_d, x_d', X)  (linear_size()),
@@ -468,8 +527,10 @@ class FrictionDampedSystem {
     return options_.watch_lift_off && inertial_[static_cast<std::size_t>(i)];
   }
   bool end_guards_of(const Mode& mode, Index i) const {
-    if (!moving_[static_cast<std::size_t>(i)] || options_.end_policy != EndPolicy::Throw) return false;
-    return !has_stick_[static_cast<std::size_t>(i)] || detail::is_slipping(mode[i]);
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (!moving_[iu] || (end_kind_[iu][0] == MemberEnd::Extend && end_kind_[iu][1] == MemberEnd::Extend)) return false;
+    return !has_stick_[static_cast<std::size_t>(i)] || detail::is_slipping(mode[i]) ||
+           mode[i] == ContactState::Separated;
   }
   Index guards_of(const Mode& mode, Index i) const {
     return contact_guards_of(mode, i) + (end_guards_of(mode, i) ? 2 : 0);
@@ -482,7 +543,9 @@ class FrictionDampedSystem {
     for (Index i = 0; i < D_; ++i) {
       const std::size_t iu = static_cast<std::size_t>(i);
       const Index nc = contact_guards_of(mode, i);
-      if (nc > 0)
+      if (mode[i] == ContactState::Separated)
+        CoulombContact<CoulombLaw<Scalar>>::gap_guard(e.gap[i], g + k);
+      else if (nc > 0)
         detail::with_law(dampers_[iu].law, [&](const auto& law) {
           CoulombContact<std::decay_t<decltype(law)>> contact(law);
           contact.guards(mode[i], e.V[i], e.N[i], e.f[i], watch_lift_off(i), g + k);
@@ -490,8 +553,9 @@ class FrictionDampedSystem {
       k += nc;
       if (end_guards_of(mode, i)) {
         const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
-        g[k++] = e.X[i];
-        g[k++] = L - e.X[i];
+        // (an end that extends keeps a constant guard, so that the guard count stays two)
+        g[k++] = end_kind_[iu][0] != MemberEnd::Extend ? e.X[i] : Scalar(1);
+        g[k++] = end_kind_[iu][1] != MemberEnd::Extend ? L - e.X[i] : Scalar(1);
       }
     }
   }
@@ -508,6 +572,23 @@ class FrictionDampedSystem {
     if (options_.moving_contact)
       for (Index i = 0; i < D_; ++i)
         d[contact_offset() + i] = moving_[static_cast<std::size_t>(i)] ? e.V[i] : Scalar(0);
+    flight_derivative(x, d);
+  }
+
+  /// The flight rows of the derivative: y_d' and y_d'' = N0 / m of a separated damper (its
+  /// preload pushes it towards the member, docs/model.md "Separation"); 0 for a damper in
+  /// contact (its flight coordinates wait, unused, until a lift-off sets them). Uses flying_ of
+  /// the evaluation's solve.
+  template <class Out>
+  void flight_derivative(const State& x, Out& d) const {
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      const Index k = flight_slot_[iu];
+      if (k < 0) continue;
+      const Index y = flight_offset() + k, yd = y + num_separable_;
+      d[y] = flying_[iu] ? x[yd] : Scalar(0);
+      d[yd] = flying_[iu] ? dampers_[iu].preload / dampers_[iu].effective_mass() : Scalar(0);
+    }
   }
 
   Vector load_vector(std::size_t shape, const Load& load) const {
@@ -559,8 +640,16 @@ class FrictionDampedSystem {
     Mn_.setZero(n_, n_);
     lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
-    for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y})
+    for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y, &eval_.gap})
       v->setZero(D_);
+    flying_.assign(static_cast<std::size_t>(D_), 0);
+    impacts_.reserve(has_impacts_ ? 1024 : 0);
+    if (has_impacts_) {  // the impulse response of transition() works in the probe workspace
+      allocate_linear_part_workspace();
+      response_.setZero(n_, 2);
+      response_x_.setZero(D_, 2);
+      impulse_dir_.setZero(n_, 2);
+    }
     cache_x_.resize(0);
     events_.reserve(1024);
     involved_.reserve(static_cast<std::size_t>(D_));
@@ -640,7 +729,9 @@ class FrictionDampedSystem {
     lp.b0 = lp_f_;
     lp.g0 = lp_g_.head(G);
     for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
-    for (Index j = 0; j < probed; ++j) {
+    const Index flight = 2 * num_separable_;  // the flight columns y_d, y_d' follow X
+    for (Index jj = 0; jj < probed + flight; ++jj) {
+      const Index j = jj < probed ? jj : flight_offset() + (jj - probed);
       lp_xs_[j] = Scalar(1);
       frozen_probe(mode, -1, G);
       lp_xs_[j] = Scalar(0);
@@ -688,7 +779,7 @@ class FrictionDampedSystem {
     using std::sin;
     using std::cos;
     const Index nz = P + 1 + 2 * K;
-    lp.quadrature_forms.resize(4);
+    lp.quadrature_forms.resize(static_cast<std::size_t>(audit_size()));  // D_imp (5th): rate 0
     for (Matrix& q : lp.quadrature_forms) q.setZero(nz, nz);
     for (Index l = 0; l < static_cast<Index>(loads_.size()); ++l) {
       const Load& load = loads_[static_cast<std::size_t>(l)];
@@ -773,7 +864,7 @@ class FrictionDampedSystem {
         e.X[i] = X;
         using std::isfinite;
         if (!isfinite(X)) {  // a blown-up trial state: report it as non-finite (no shapes at NaN)
-          for (Vector* v : {&e.qdd, &e.N, &e.f, &e.V, &e.Vdot, &e.xdd, &e.slope, &e.y})
+          for (Vector* v : {&e.qdd, &e.N, &e.f, &e.V, &e.Vdot, &e.xdd, &e.slope, &e.y, &e.gap})
             v->setConstant(std::numeric_limits<Scalar>::quiet_NaN());
           e.finite = false;
           return;
@@ -782,6 +873,12 @@ class FrictionDampedSystem {
         e.X[i] = dmp.contact_coordinate;
       }
       const ContactState s = mode[i];
+      flying_[iu] = s == ContactState::Separated;
+      e.gap[i] = Scalar(0);
+      if (flying_[iu]) {
+        flight_rows(i, x);
+        continue;
+      }
       const bool stuck = has_stick_[iu] && s == ContactState::Stick;
       if (!Frozen && moving && !stuck) {  // the contact moves at every call: element-space products
         moving_damper(i, mode, x);
@@ -840,7 +937,7 @@ class FrictionDampedSystem {
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
       Scalar bq;
-      if (!Frozen && moving_[iu] && !stuck) {  // b from moving_damper
+      if (!Frozen && moving_[iu] && !stuck && !flying_[iu]) {  // b from moving_damper
         bq = modal(slip_b_.col(i)).dot(modal(e.qdd));
       } else {
         bq = C_.col(D + i).dot(e.qdd);
@@ -855,6 +952,25 @@ class FrictionDampedSystem {
       }
     }
     e.finite = detail::all_finite(e.qdd) && detail::all_finite(e.N) && detail::all_finite(e.f);
+  }
+
+  /// A separated damper (no unknown: N = f = 0): its shapes at X, V = x' - b^T q', the member's
+  /// y = a^T q, slope and the gap y - y_d (its guard); e.y reports the damper's own y_d.
+  void flight_rows(Index i, const State& x) const {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    Evaluation& e = eval_;
+    if (moving_[iu]) evaluate_shapes(i, e.X[i]);
+    const auto q = x.template segment<Modes>(0, n_);
+    const auto qd = x.template segment<Modes>(n_, n_);
+    const Index y = flight_offset() + flight_slot_[iu];
+    e.V[i] = x[xd_offset() + i] - qd.dot(modal(C_.col(D_ + i)));
+    e.slope[i] = moving_[iu] ? q.dot(modal(dpsi_w_.col(i))) : Scalar(0);
+    e.gap[i] = q.dot(modal(C_.col(i))) - x[y];
+    e.y[i] = x[y];
+    e.N[i] = Scalar(0);
+    e.f[i] = Scalar(0);
+    d_[i] = Scalar(0);
+    mu_[i] = Scalar(0);
   }
 
   /// One slipping damper with a moving contact (its X changes at every call): its slip row
@@ -1326,6 +1442,42 @@ class FrictionDampedSystem {
     return TransitionAction::halt("stopped" + at);
   }
 
+  // ---- separation (docs/model.md "Separation"; defined below the class) ----------------------
+  /// The member's normal displacement y = a^T q and velocity y' = a^T q' + slope V (slope with a
+  /// moving contact) under damper i, its slope and sliding velocity V; leaves i's shapes in C_.
+  struct MemberContact {
+    Scalar y, yd, slope, V;
+  };
+  MemberContact member_contact(Index i, const State& x) const;
+  /// The impacts of impacting_, then the lift-offs of lifting_ (into flight); false when an
+  /// impact has no solution (frictional_impact not resolved).
+  bool separation_transition(Mode& mode, Scalar t, State& x);
+  /// Damper i leaves the member: flight coordinates y_d, y_d' := the member's y, y' under it.
+  void separate(Mode& mode, Index i, Scalar t, State& x);
+  /// W = G M_eff^-1 G^T of a damper of mass m at slope s: the member's part impulse_dir_^T
+  /// response_ (after impulse_response) plus the damper's [[(1 + s^2)/m, s/m], [s/m, 1/m]],
+  /// symmetric (the member's part is, up to round-off).
+  Eigen::Matrix<Scalar, 2, 2> inverse_effective_mass(Scalar s, Scalar m) const {
+    Eigen::Matrix<Scalar, 2, 2> W = impulse_dir_.transpose() * response_;
+    W(0, 0) += (Scalar(1) + s * s) / m;
+    W(1, 1) += Scalar(1) / m;
+    W(0, 1) = W(1, 0) = (W(0, 1) + W(1, 0)) / Scalar(2) + s / m;
+    return W;
+  }
+  /// The impact of separated damper i (gap = 0): frictional_impact with W from the member's
+  /// impulse response; velocities updated, the loss booked; bounce or landing.
+  bool impact(Mode& mode, Index i, Scalar t, State& x);
+  /// response_ = the member's modal velocity jumps, response_x_ the dampers' x' jumps, for unit
+  /// modal impulses impulse_dir_ (two columns), through the other dampers' contact rows.
+  void impulse_response(const Mode& mode, const State& x);
+  /// Damper i's contact point reached the wall at end `end` (0: X = 0, 1: X = L): the sliding
+  /// velocity V -> -e V by a tangential impulse through W_t = 1/m + b^T R b (with the normal
+  /// impulse that keeps an inertial contact closed on a sloped member); the loss booked.
+  void wall_impact(Mode& mode, Index i, int end, Scalar t, State& x);
+  /// Candidates (dampers that may separate, in contact) whose normal force is not positive leave
+  /// the member; the other dampers' states are then resolved again. False when resolve fails.
+  bool land_or_separate(Mode& mode, const std::vector<Index>& candidates, Scalar t, State& x);
+
   // Scene.
   std::vector<Damper> dampers_;
   std::vector<Load> loads_;
@@ -1392,7 +1544,20 @@ class FrictionDampedSystem {
   std::vector<bool> moving_;
 
   std::vector<ContactEvent> events_;
-  std::vector<Index> involved_;
+  std::vector<ImpactEvent> impacts_;
+  std::vector<Index> involved_, lifting_, impacting_;
+  // Separation (docs/model.md "Separation"): per damper its flight slot (-1: cannot separate),
+  // the number S of such dampers, which dampers the last solve had in flight, and the impulse
+  // response workspace of impact() (member velocity and damper velocity jumps per unit impulse).
+  std::vector<Index> flight_slot_;
+  Index num_separable_ = 0;
+  // Member ends per damper (start X = 0, finish X = L), resolved: Stop, Extend or Wall; whether
+  // the audit books impacts (separation or walls); the walls hit at the current transition.
+  std::vector<std::array<MemberEnd, 2>> end_kind_;
+  bool has_impacts_ = false;
+  std::vector<std::pair<Index, int>> wall_hits_;
+  mutable std::vector<char> flying_;
+  Matrix response_, response_x_, impulse_dir_;
   StopReason stop_reason_ = StopReason::None;
   Index stop_damper_ = -1;
 };
@@ -1474,6 +1639,13 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
         return std::numeric_limits<Scalar>::quiet_NaN();
     }));
     inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
+    const bool separable = d.separation == Separation::Separate && watch_lift_off(i);
+    flight_slot_.push_back(separable ? num_separable_++ : Index(-1));
+    const MemberEnd fallback = options_.end_policy == EndPolicy::Throw ? MemberEnd::Stop : MemberEnd::Extend;
+    const auto resolved = [&](MemberEnd e) { return e == MemberEnd::Default ? fallback : e; };
+    end_kind_.push_back({resolved(d.start_end), resolved(d.finish_end)});
+    has_impacts_ = has_impacts_ || separable || end_kind_.back()[0] == MemberEnd::Wall ||
+                   end_kind_.back()[1] == MemberEnd::Wall;
   }
 
   load_psi_.resize(n_, static_cast<Index>(loads_.size()));
@@ -1548,6 +1720,8 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::step_rates() const -> std::vect
     const std::string name = "damper " + std::to_string(i);
     const Scalar w = sqrt(d.effective_stiffness() / d.effective_mass());
     if (w > 0) rates.push_back({C(Scalar(0), w), name + " slip oscillator sqrt(k/m) (" + detail::format_frequency(w) + ")"});
+    if (flight_slot_[i] >= 0)  // separated: y_d'' = N0/m, a double integrator
+      rates.push_back({C(Scalar(0), Scalar(0)), name + " flight y_d'' = N0/m (rate 0)"});
     if (!(slope[i] > 0)) continue;
     const Scalar two_sigma = slope[i] / d.effective_mass() + member_sum;
     add_roots(two_sigma / Scalar(2), w,
@@ -1562,6 +1736,9 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
                                                             Scalar t, State& x) -> TransitionAction {
   std::vector<Index>& involved = involved_;
   involved.clear();
+  lifting_.clear();
+  impacting_.clear();
+  wall_hits_.clear();
   for (Index idx : triggered) {
     Index i = 0, local = idx;
     for (; i < D_; ++i) {
@@ -1571,13 +1748,30 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
     }
     STICKSLIP_ASSERT(i < D_);
     const Index nc = contact_guards_of(mode, i);
+    if (local >= nc) {  // a member end: a wall reflects, else the run stops
+      const int end = static_cast<int>(local - nc);
+      if (end_kind_[static_cast<std::size_t>(i)][static_cast<std::size_t>(end)] != MemberEnd::Wall)
+        return stop(StopReason::LeftMember, i, t, x, mode);
+      wall_hits_.emplace_back(i, end);
+      continue;
+    }
+    if (mode[i] == ContactState::Separated) {  // the gap closed: an impact
+      impacting_.push_back(i);
+      continue;
+    }
     const bool lift = watch_lift_off(i) && local == nc - 1;
-    if (local >= nc) return stop(StopReason::LeftMember, i, t, x, mode);
-    if (lift) return stop(StopReason::LiftOff, i, t, x, mode);
+    if (lift && flight_slot_[static_cast<std::size_t>(i)] < 0) return stop(StopReason::LiftOff, i, t, x, mode);
+    if (lift) {
+      lifting_.push_back(i);
+      continue;
+    }
     if (std::find(involved.begin(), involved.end(), i) == involved.end()) involved.push_back(i);
   }
-  return resolve(mode, involved, t, x) ? TransitionAction::proceed()
-                                       : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+  if (!separation_transition(mode, t, x))
+    return stop(StopReason::NoConsistentState, impacting_.front(), t, x, mode);
+  return resolve(mode, involved, t, x) && land_or_separate(mode, impacting_, t, x)
+             ? TransitionAction::proceed()
+             : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -1594,13 +1788,19 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Sca
       // A constant normal load N0 = 0 never presses an exact-law damper: no contact, ever.
       const std::size_t iu = static_cast<std::size_t>(i);
       const bool unpressed = !inertial_[iu] && has_stick_[iu];
+      if (mode[i] == ContactState::Separated || flight_slot_[iu] >= 0) continue;  // below
       if ((watch_lift_off(i) || unpressed) && !(e.N[i] > Scalar(0))) {
         stop(StopReason::LiftOff, i, t, x, mode);
         return false;
       }
     }
   }
-  return true;
+  // Dampers that may separate: those without a positive normal force leave the member at t0.
+  lifting_.clear();
+  for (Index i = 0; i < D_; ++i)
+    if (flight_slot_[static_cast<std::size_t>(i)] >= 0 && mode[i] != ContactState::Separated)
+      lifting_.push_back(i);
+  return land_or_separate(mode, lifting_, t, x);
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -1630,6 +1830,12 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::mechanical_energy(const Mode& m
     const Scalar m = d.effective_mass(), k = d.effective_stiffness();
     const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
     if (moving_[static_cast<std::size_t>(i)]) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
+    if (mode[i] == ContactState::Separated) {  // in flight: its own y_d, y_d' (docs/model.md "Separation")
+      const Index y = flight_offset() + flight_slot_[static_cast<std::size_t>(i)];
+      const Scalar yd = x[y + num_separable_];
+      E += Scalar(0.5) * m * (xdi * xdi + yd * yd) + Scalar(0.5) * k * xi * xi - d.preload * x[y];
+      continue;
+    }
     const Scalar y = q.dot(C_.col(i));
     E += Scalar(0.5) * m * xdi * xdi + Scalar(0.5) * k * xi * xi - d.preload * y;
     if (inertial_[static_cast<std::size_t>(i)]) {
@@ -1658,6 +1864,12 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
     const std::size_t iu = static_cast<std::size_t>(i);
     const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
     lp_X_[i] = e.X[i];
+    if (mode[i] == ContactState::Separated) {  // free flight: linear (y'' = N0/m), f = 0
+      lp_mu_[i] = Scalar(0);
+      moving_slip = moving_slip || moving_[iu];
+      exact = exact && !moving_[iu];
+      continue;
+    }
     lp_mu_[i] = stuck ? Scalar(0) : slip_coefficient(i, mode[i], e.V[i]);
     if (stuck) continue;
     moving_slip = moving_slip || moving_[iu];
@@ -1693,6 +1905,193 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
   lp_f_ -= lp_b_;
   lp_f_.noalias() -= lp.A * x.head(linear_size());
   lp.b0 += lp_f_;
+  return true;
+}
+
+// ---- separation: lift-off into flight, impacts, landings (docs/model.md "Separation") --------
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::member_contact(Index i, const State& x) const -> MemberContact {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Scalar X = moving_[iu] ? x[contact_offset() + i] : dampers_[iu].contact_coordinate;
+  if (moving_[iu]) evaluate_shapes(i, X);
+  const auto q = x.template segment<Modes>(0, n_);
+  const auto qd = x.template segment<Modes>(n_, n_);
+  MemberContact c;
+  c.y = q.dot(modal(C_.col(i)));
+  c.V = x[xd_offset() + i] - qd.dot(modal(C_.col(D_ + i)));
+  c.slope = moving_[iu] ? q.dot(modal(dpsi_w_.col(i))) : Scalar(0);
+  c.yd = qd.dot(modal(C_.col(i))) + c.slope * c.V;
+  return c;
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::separate(Mode& mode, Index i, Scalar t, State& x) {
+  const MemberContact c = member_contact(i, x);
+  const Index y = flight_offset() + flight_slot_[static_cast<std::size_t>(i)];
+  x[y] = c.y;
+  x[y + num_separable_] = c.yd;
+  events_.push_back(ContactEvent{t, i, mode[i], ContactState::Separated});
+  mode[i] = ContactState::Separated;
+  cache_valid_ = false;
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::impulse_response(const Mode& mode, const State& x) {
+  // The frozen solve (solve_forces<true>) is the impulse problem when r0 is the impulse and the
+  // state, preloads and slip coefficients are zero: q'' -> the jump of q', N and f -> the other
+  // dampers' impulses, x'' -> the jumps of their x'. The other contacts act through their rows:
+  // a stuck damper's tangential and (inertial) normal constraint, a slipping one's normal
+  // constraint without its friction impulse (mu = 0: a symmetric W, no work of the constraints).
+  lp_xs_.setZero();
+  if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = x.segment(contact_offset(), D_);
+  lp_mu_.setZero();
+  for (Index j = 0; j < D_; ++j) std::swap(lp_preload_[static_cast<std::size_t>(j)], dampers_[static_cast<std::size_t>(j)].preload);
+  const bool refine = options_.refine_stale_factorisation;
+  options_.refine_stale_factorisation = false;
+  factor_unknowns_ = -1;
+  for (Index c = 0; c < 2; ++c) {
+    modal(r0_) = modal(impulse_dir_.col(c));
+    solve_forces<true>(mode, lp_xs_);
+    response_.col(c) = eval_.qdd;
+    response_x_.col(c) = eval_.xdd;
+  }
+  for (Index j = 0; j < D_; ++j) std::swap(lp_preload_[static_cast<std::size_t>(j)], dampers_[static_cast<std::size_t>(j)].preload);
+  options_.refine_stale_factorisation = refine;
+  factor_unknowns_ = -1;
+  cache_valid_ = false;
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Scalar t, State& x) {
+  using Mat2 = Eigen::Matrix<Scalar, 2, 2>;
+  using Vec2 = Eigen::Matrix<Scalar, 2, 1>;
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Damper& d = dampers_[iu];
+  const Scalar m = d.effective_mass();
+  const MemberContact c = member_contact(i, x);  // i's shapes now in C_
+  const Scalar s = c.slope;
+  // Rows of the gap rate g' = (a - s b)^T q' + s x' - y_d' and of V = x' - b^T q' in the
+  // velocities (q', x', y_d'); the impulse L = (L_n, L_t) acts on them through these rows.
+  impulse_dir_.col(0) = C_.col(i) - s * C_.col(D_ + i);
+  impulse_dir_.col(1) = -C_.col(D_ + i);
+  const Index y = flight_offset() + flight_slot_[iu], yd = y + num_separable_;
+  const Vec2 v(c.yd - x[yd], c.V);
+  impulse_response(mode, x);
+  const Mat2 W = inverse_effective_mass(s, m);
+  const NewtonImpact<Scalar> newton(d.restitution, d.landing_speed);
+  const FrictionalImpact<Scalar> hit = detail::with_law(d.law, [&](const auto& law) {
+    using L = std::decay_t<decltype(law)>;
+    if constexpr (L::has_stick_state) {
+      return frictional_impact(newton, law, W, v);
+    } else {  // a bounded friction force has no impulse: Newton's law alone, through W_nn
+      FrictionalImpact<Scalar> r;
+      const NormalImpact<Scalar> normal = newton.impact(v[0], W(0, 0));
+      r.impulse = Vec2(normal.impulse, Scalar(0));
+      r.velocity_after = v + W.col(0) * normal.impulse;
+      r.velocity_after[0] = normal.velocity_after;
+      r.energy_loss = normal.energy_loss;
+      r.lands = normal.lands;
+      r.state = slip_state(r.velocity_after[1]);
+      return r;
+    }
+  });
+  if (!hit.resolved) return false;
+  const Vec2& L = hit.impulse;
+  x.segment(n_, n_) += response_ * L;
+  for (Index j = 0; j < D_; ++j)
+    if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
+  x[xd_offset() + i] += (s * L[0] + L[1]) / m;
+  x[yd] -= L[0] / m;
+  if (audit_size() > 4) x[energy_offset() + 4] += hit.energy_loss;
+  const ContactState to = hit.lands ? hit.state : ContactState::Separated;
+  impacts_.push_back(ImpactEvent{t, i, L[0], L[1], v[0], hit.velocity_after[0], v[1], hit.velocity_after[1],
+                                 hit.energy_loss, to});
+  events_.push_back(ContactEvent{t, i, ContactState::Separated, to});
+  mode[i] = to;
+  if (to == ContactState::Stick) involved_.push_back(i);  // resolve() decides stick or slip
+  cache_valid_ = false;
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i, int end, Scalar t, State& x) {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Damper& d = dampers_[iu];
+  const Scalar m = d.effective_mass();
+  const MemberContact c = member_contact(i, x);  // i's shapes now in C_
+  const Scalar V = c.V;
+  if (!(end == 0 ? V < Scalar(0) : V > Scalar(0))) return;  // not moving into the wall
+  // V = x' - b^T q': the impulse L_t on the damper along u acts on the member as -b L_t. A
+  // damper in contact with an inertial normal load keeps its contact through the impact: with
+  // a slope s, V's jump moves it along the normal by s dV, which takes a normal impulse L_n
+  // with gap' = (a - s b)^T q' + s x' - y_d' held at 0 (the rows of impact(); its own contact
+  // rows are taken out of the member's response for this, and its friction impulse left out).
+  const bool normal = inertial_[iu] && mode[i] != ContactState::Separated;
+  const Scalar s = normal ? c.slope : Scalar(0);
+  impulse_dir_.col(0) = C_.col(i) - s * C_.col(D_ + i);
+  impulse_dir_.col(1) = -C_.col(D_ + i);
+  const char inertial = inertial_[iu];
+  inertial_[iu] = 0;  // (no preload in the probe: no rows of its own)
+  impulse_response(mode, x);
+  inertial_[iu] = inertial;
+  const Scalar V_after = -d.wall_restitution * V;
+  Eigen::Matrix<Scalar, 2, 1> L(Scalar(0), Scalar(0));
+  if (normal) {
+    L = inverse_effective_mass(s, m).inverse() * Eigen::Matrix<Scalar, 2, 1>(Scalar(0), V_after - V);
+  } else {
+    L[1] = (V_after - V) / (Scalar(1) / m + impulse_dir_.col(1).dot(response_.col(1)));
+  }
+  x.segment(n_, n_) += response_ * L;
+  for (Index j = 0; j < D_; ++j)
+    if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
+  x[xd_offset() + i] += (s * L[0] + L[1]) / m;
+  const Scalar loss = -L[1] * (V + V_after) / Scalar(2);
+  if (audit_size() > 4) x[energy_offset() + 4] += loss;
+  ContactState to = mode[i];
+  if (mode[i] != ContactState::Separated) {
+    if (V_after == Scalar(0) && has_stick_[iu]) {
+      to = ContactState::Stick;
+      involved_.push_back(i);  // resolve() decides stick or slip
+    } else {
+      to = slip_state(V_after);
+    }
+  }
+  impacts_.push_back(ImpactEvent{t, i, L[0], L[1], Scalar(0), Scalar(0), V, V_after, loss, to, true});
+  events_.push_back(ContactEvent{t, i, mode[i], to});
+  mode[i] = to;
+  cache_valid_ = false;
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::separation_transition(Mode& mode, Scalar t, State& x) {
+  for (Index i : impacting_)
+    if (!impact(mode, i, t, x)) return false;
+  for (const auto& hit : wall_hits_) wall_impact(mode, hit.first, hit.second, t, x);
+  for (Index i : lifting_) separate(mode, i, t, x);
+  involved_.erase(std::remove_if(involved_.begin(), involved_.end(),
+                                 [&](Index i) { return mode[i] == ContactState::Separated; }),
+                  involved_.end());
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::land_or_separate(Mode& mode, const std::vector<Index>& candidates,
+                                                                  Scalar t, State& x) {
+  for (Index pass = 0; pass <= D_; ++pass) {
+    bool changed = false;
+    for (Index i : candidates) {
+      if (flight_slot_[static_cast<std::size_t>(i)] < 0 || mode[i] == ContactState::Separated) continue;
+      const Evaluation& e = evaluate(mode, t, x);
+      if (!e.finite) return true;  // reported by the stepper's finiteness check
+      if (e.N[i] > Scalar(0)) continue;
+      separate(mode, i, t, x);
+      changed = true;
+    }
+    if (!changed) return true;
+    involved_.clear();
+    if (!resolve(mode, involved_, t, x)) return false;
+  }
   return true;
 }
 

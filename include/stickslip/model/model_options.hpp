@@ -27,6 +27,8 @@ struct ModelOptions {
   bool energy_audit = true;
   /// What happens when a contact point reaches a member end (component 3's policy): Throw stops
   /// the run with a "left member" status; Extrapolate/Clamp continue with that approximation.
+  /// A damper's PointDamper::start_end / finish_end override it per end (MemberEnd: Stop,
+  /// Extend, Wall; Default follows this option).
   EndPolicy end_policy = EndPolicy::Throw;
   /// When the acceleration solve's matrix changed since its last factorisation but has the same
   /// unknowns (slipping contacts that moved, new slopes), and the system is larger than the

@@ -7,6 +7,8 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/contact_point.hpp"
 #include "stickslip/model/normal_load.hpp"
+#include "stickslip/model/member_end.hpp"
+#include "stickslip/model/separation.hpp"
 
 #include <Eigen/Core>
 
@@ -53,6 +55,21 @@ struct PointDamper {
   /// This damper's contact point: Moving (X' = V, paper eq 10) or Fixed (X = X0).
   /// ModelOptions::moving_contact = false overrides it for every damper.
   ContactPoint contact_point = ContactPoint::Moving;
+  /// What happens when this damper's normal force reaches zero: Stop the run (default) or
+  /// Separate (free flight, then an impact; docs/model.md "Separation"). Separate needs an
+  /// inertial normal load and ModelOptions::watch_lift_off (else N never reaches zero).
+  Separation separation = Separation::Stop;
+  /// Newton's coefficient of restitution e in [0, 1] of this damper's impacts (Separate only).
+  Scalar restitution = Scalar(0);
+  /// Impacts approaching at or below this relative normal speed land (persistent contact, the
+  /// rule that ends a Zeno sequence of bounces; NewtonImpact) [m/s], >= 0 (Separate only).
+  Scalar landing_speed = Scalar(1e-4);
+  /// What the moving contact does at X = 0 of the member (docs/model.md, "Member ends").
+  MemberEnd start_end = MemberEnd::Default;
+  /// What the moving contact does at X = L of the member.
+  MemberEnd finish_end = MemberEnd::Default;
+  /// Coefficient of restitution e in [0, 1] of a MemberEnd::Wall: V -> -e V.
+  Scalar wall_restitution = Scalar(1);
 
   /// Effective mass s m in this blade's equations (paper eqs 11-14).
   Scalar effective_mass() const { return share * mass; }
@@ -79,9 +96,15 @@ struct PointDamper {
     detail::require_positive(where, "share", share);
     if (share > Scalar(1)) detail::throw_invalid(where, "share must be <= 1", share);
     if (!(side == Scalar(1) || side == Scalar(-1))) detail::throw_invalid(where, "side must be +1 or -1", side);
+    detail::require_non_negative(where, "restitution", restitution);
+    if (!(restitution <= Scalar(1))) detail::throw_invalid(where, "restitution must be in [0, 1]", restitution);
+    detail::require_non_negative(where, "landing_speed", landing_speed);
+    detail::require_non_negative(where, "wall_restitution", wall_restitution);
+    if (!(wall_restitution <= Scalar(1)))
+      detail::throw_invalid(where, "wall_restitution must be in [0, 1]", wall_restitution);
     if (initial_state == ContactState::LiftOff)
       detail::throw_invalid(where, "initial_state cannot be lift-off", "lift_off");
-    if (initial_state == ContactState::Separated)  // the model has no separated damper (issue #22)
+    if (initial_state == ContactState::Separated)  // a run starts in contact; lift-off separates
       detail::throw_invalid(where, "initial_state cannot be separated", "separated");
   }
 };
