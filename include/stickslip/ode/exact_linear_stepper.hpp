@@ -47,8 +47,9 @@ namespace stickslip {
 /// Where r_m != 0 (or linear_part returns false, then with Â = 0, i.e.
 /// plain Dormand-Prince) the Lawson form of Dormand-Prince 5(4) is used with the error control
 /// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
-/// delta in modes with guards; the linear part is refreshed at every accepted step (the system's
-/// `version` tells whether A_m changed).
+/// delta in modes with guards; the linear part is kept frozen while the remainder does not limit
+/// the step (refresh_error; the system's `version` tells whether A_m changed at a refresh), and
+/// steps of one length reuse their stage propagators.
 ///
 /// Events: a guard fires when it crosses at a grid point (GuardMonitor semantics, as in
 /// HybridStepper), or when the cubic Hermite interpolant of its value and slope between two
@@ -106,6 +107,14 @@ class ExactLinearStepper {
   /// the class comment).
   static constexpr int jump_levels = 8;
 
+  /// Inexact modes keep the linear part of their last refresh (A_m frozen, e.g. at the contact
+  /// point X* of a moving contact) and leave its change in the remainder, r_m(t, x) = f(t, x) -
+  /// A_m(X*) x_L - b_m(t). The remainder is the only part the Lawson method does not integrate
+  /// exactly, so it alone makes the error estimate err: the linear part is refreshed at the end
+  /// of an accepted step whose err exceeds refresh_error (the step control's target is
+  /// safety^5 ~ 0.59), i.e. when the grown remainder starts to limit the step.
+  static constexpr double refresh_error = 0.5;
+
   /// Keeps a reference to `system`. Throws std::invalid_argument ("ExactLinearStepper:
   /// options.<name> ...") for options out of range.
   explicit ExactLinearStepper(System& system, StepperOptions<Scalar> options = {})
@@ -137,6 +146,11 @@ class ExactLinearStepper {
   // linear_part at (t, x_): Â, the sampling interval, y_ and (inexact modes, when Â changed or
   // `force`) the remainder r_. False when the remainder is not finite.
   bool refresh_linear_part(const Mode& m, Scalar t, bool force, StepperStats& st);
+
+  // Inexact modes: true when the frozen linear part is to be refreshed after an accepted step
+  // with error estimate err (see refresh_error); always without a linear form (Â = 0: nothing
+  // is frozen, linear_part may give one at the next point).
+  bool remainder_grown(Scalar err) const { return lp_.size() == 0 || err > Scalar(refresh_error); }
 
   // ---- evaluations -------------------------------------------------------------------------
   bool remainder(const Mode& m, Scalar t, const Vector& y, Vector& out, StepperStats& st) {
@@ -807,7 +821,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       err = lawson_.step(
           flow_,
           [&](Scalar tt, const Vector& y, Vector& out) { return remainder(mode, tt, y, out, st); },
-          t_, y_, r_, h, y1_, r1_, opt_.rtol, opt_.atol, work_);
+          t_, y_, r_, h, y1_, r1_, opt_.rtol, opt_.atol, work_, true);
       if (std::isnan(err) || !detail::all_finite(y1_) || err > Scalar(1)) {
         ++st.rejected_steps;
         const bool bad = std::isnan(err) || !detail::all_finite(y1_);
@@ -902,8 +916,9 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
                     "stopped by observer " + detail::at_time(t_));
     if (!exact_) {
       r_.swap(r1_);
-      if (linear_) {
-        // A_m may follow the state (the contact point moves): refresh, keeping the step.
+      if (linear_ && remainder_grown(err)) {
+        // A_m follows the state (the contact point moves): refresh it, keeping the step.
+        ++work_.linear_part_refreshes;
         if (!refresh_linear_part(mode, t_, false, st))
           return finish(r, Status::NonFiniteState, t_, x_, mode,
                         "right-hand side not finite " + detail::at_time(t_));

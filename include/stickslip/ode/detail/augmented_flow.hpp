@@ -38,6 +38,7 @@ struct ExactStepperStats {
   long linear_part_calls = 0;    ///< calls of System::linear_part
   long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
   long long_steps = 0;           ///< exact steps of several grid steps (guard-rate bound)
+  long linear_part_refreshes = 0;  ///< refreshes of a frozen linear part in inexact modes
 };
 
 namespace detail {
@@ -70,6 +71,7 @@ class AugmentedFlow {
     }
     const bool same = a_.rows() == dim && a_ == build_;
     if (!same) {
+      ++generation_;
       a_.swap(build_);
       ladder_k_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
@@ -100,6 +102,8 @@ class AugmentedFlow {
   Eigen::Index state_size() const noexcept { return nx_; }
   Eigen::Index linear_size() const noexcept { return n_; }
   const Matrix& generator() const noexcept { return a_; }
+  /// Changes (increments) whenever Â changes; starts at 1 with the first assign().
+  std::uint64_t generation() const noexcept { return generation_; }
 
   /// max(|lambda(A_m)|, w_k): the fastest rate (rad per time unit) of the mode's solutions.
   Scalar fastest_rate() const noexcept { return fastest_; }
@@ -264,7 +268,7 @@ class AugmentedFlow {
   Eigen::Index nx_ = 0, n_ = 0;
   Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
-  std::uint64_t version_ = 0;
+  std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;
 };
 
