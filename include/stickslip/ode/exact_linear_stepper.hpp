@@ -134,6 +134,16 @@ class ExactLinearStepper {
     return integrate(std::move(mode), t0, x0, t_end, none);
   }
 
+  /// Mode cache: the propagators of up to `entries` distinct augmented generators Â (the grid
+  /// ladder, the eigenvalue bound, and in exact modes the Van Loan blocks of the grid step and of
+  /// the output interval) are kept for modes that come back, as the few modes of a stick-slip
+  /// run alternate; a revisited mode then uses its closed forms from its first step. Default 8;
+  /// 0 switches the cache off. Entries are kept across integrate() calls.
+  void set_mode_cache_size(std::size_t entries) {
+    flow_.set_cache_size(entries);
+    blocks_.clear();
+  }
+
   /// The options of the stepper (validated at construction).
   const Options& options() const { return opt_; }
   /// Work counters of the last run.
@@ -262,6 +272,18 @@ class ExactLinearStepper {
   Matrix jump_r_, jump_rmax_, jump_e_, jump_tmp_;
   Vector absy_, bound_, yp_;
   bool jumps_valid_ = false;
+  // Per slot of the flow's mode cache: the Van Loan blocks of the Â in that slot (valid while the
+  // slot's stamp is unchanged) for the grid step delta, the output interval and the forms given.
+  struct ModeBlocks {
+    std::uint64_t stamp = 0;
+    Scalar delta = 0;
+    std::vector<Matrix> forms;
+    Matrix phi_grid, w_grid, phi_out, w_out;
+    bool grid = false, out = false;
+  };
+  std::vector<ModeBlocks> blocks_;
+  ModeBlocks* mode_blocks(bool create);
+  void restore_blocks();
   bool forms_ = false, w_grid_valid_ = false, out_valid_ = false;
 };
 
@@ -343,6 +365,7 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
     w_grid_valid_ = false;
     jumps_valid_ = false;
   }
+  restore_blocks();
   if (closed_form_guards()) {
     const Eigen::Index n = lp_.size(), ng = lp_.Gx.rows();
     ghat_.setZero(ng, flow_.dim());
@@ -359,12 +382,66 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
 }
 
 template <class System>
+auto ExactLinearStepper<System>::mode_blocks(bool create) -> ModeBlocks* {
+  const int slot = flow_.cache_slot();
+  if (!exact_ || slot < 0 || !std::isfinite(delta_)) return nullptr;
+  const auto i = static_cast<std::size_t>(slot);
+  if (blocks_.size() <= i) {
+    if (!create) return nullptr;
+    blocks_.resize(i + 1);
+  }
+  ModeBlocks& b = blocks_[i];
+  const std::uint64_t stamp = flow_.cache_stamp(slot);
+  const bool forms_match = [&] {
+    if (b.forms.size() != lp_.quadrature_forms.size()) return false;
+    for (std::size_t j = 0; j < b.forms.size(); ++j)
+      if (b.forms[j].rows() != lp_.quadrature_forms[j].rows() || b.forms[j] != lp_.quadrature_forms[j])
+        return false;
+    return true;
+  }();
+  if (b.stamp == stamp && b.delta == delta_ && forms_match) return &b;
+  if (!create) return nullptr;
+  b.stamp = stamp;
+  b.delta = delta_;
+  b.forms = lp_.quadrature_forms;
+  b.grid = b.out = false;
+  return &b;
+}
+
+template <class System>
+void ExactLinearStepper<System>::restore_blocks() {
+  if (!flow_.restored()) return;
+  const ModeBlocks* b = mode_blocks(false);
+  if (b == nullptr) return;
+  if (b->grid && !w_grid_valid_) {
+    phi_grid_ = b->phi_grid;
+    w_grid_ = b->w_grid;
+    phi_grid_delta_ = delta_;
+    w_grid_valid_ = true;
+  }
+  if (b->out && !out_valid_) {
+    phi_out_ = b->phi_out;
+    w_out_ = b->w_out;
+    out_valid_ = true;
+  }
+}
+
+template <class System>
 bool ExactLinearStepper<System>::grid_quadrature_ready() {
-  if (!forms_ || mode_steps_ < closed_form_after || !std::isfinite(delta_)) return false;
+  // A mode seen before (mode cache: it comes back, so its blocks pay off) uses them from its
+  // first step; they are computed once per cache entry.
+  if (!forms_ || (mode_steps_ < closed_form_after && !w_grid_valid_ && !flow_.restored()) ||
+      !std::isfinite(delta_))
+    return false;
   if (!w_grid_valid_) {
     flow_.van_loan(delta_, lp_.quadrature_forms, phi_grid_, w_grid_, work_);
     phi_grid_delta_ = delta_;
     w_grid_valid_ = true;
+    if (ModeBlocks* b = mode_blocks(true)) {
+      b->phi_grid = phi_grid_;
+      b->w_grid = w_grid_;
+      b->grid = true;
+    }
   }
   return true;
 }
@@ -709,11 +786,17 @@ bool ExactLinearStepper<System>::emit_samples(Observer& obs, const Mode& m, Scal
       xs_ = x1_;
       ysample = &y1_;
     } else if (exact_ && (forms_ || nq_ == 0) && k_chain_ == k - 1 &&
-               (mode_samples_ >= closed_form_after || mode_steps_ >= closed_form_after)) {
+               (mode_samples_ >= closed_form_after || mode_steps_ >= closed_form_after ||
+                out_valid_ || flow_.restored())) {
       // One interval on from the previous sample of this mode: y(ts) = exp(Â h_out) y(ts - h_out).
       if (!out_valid_) {
         flow_.van_loan(opt_.output_interval, lp_.quadrature_forms, phi_out_, w_out_, work_);
         out_valid_ = true;
+        if (ModeBlocks* b = mode_blocks(true)) {
+          b->phi_out = phi_out_;
+          b->w_out = w_out_;
+          b->out = true;
+        }
       }
       ys_.noalias() = phi_out_ * y_chain_;
       ++work_.matvecs;
