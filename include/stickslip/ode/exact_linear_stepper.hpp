@@ -346,7 +346,9 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
                     : std::numeric_limits<Scalar>::infinity();
   delta_ = std::min(delta_, opt_.max_step);
   // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
-  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_);
+  // Only exact modes go to the mode cache: a frozen inexact Â (a moving contact) rarely recurs
+  // and would evict the few modes of a stick-slip run that do.
+  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_, exact_);
   lawson_.initialize(flow_.dim());
   for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_}) v->resize(flow_.dim());
   // Closed-form pieces of an exact mode: dropped when Â, the grid step or the forms changed.

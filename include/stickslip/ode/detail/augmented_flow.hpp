@@ -160,8 +160,9 @@ class AugmentedFlow {
   /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
   /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
   /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
-  /// while Â and base do not change.
-  void prepare(Scalar base, ExactStepperStats& st) {
+  /// while Â and base do not change; with `keep`, also in the mode cache for a later mode with
+  /// the same Â.
+  void prepare(Scalar base, ExactStepperStats& st, bool keep = true) {
     if (!(base > 0) || !std::isfinite(base) || !(norm1_ > 0)) {
       ladder_k_ = -1;
       return;
@@ -185,7 +186,7 @@ class AugmentedFlow {
     }
     base_ = base;
     ladder_k_ = K;
-    if (cache_size_ > 0) {  // keep it for a later mode with the same Â (round robin)
+    if (keep && cache_size_ > 0) {  // for a later mode with the same Â (round robin)
       if (cache_.size() < cache_size_) cache_.emplace_back();
       slot_ = static_cast<int>(next_slot_ % cache_.size());
       ++next_slot_;
