@@ -35,6 +35,7 @@ std::vector<Implementation> implementations() {
   return {
       {"library_dormand_prince54", "library", &run_library<stickslip::DormandPrince54>},
       {"library_rosenbrock23", "library", &run_library<stickslip::Rosenbrock23>},
+      {"library_modal_exact", "library", &run_library<ModalExact>},
       {"odeint_dopri5", "odeint", &run_odeint},
       {"cvode_adams", "cvode", &run_cvode},
   };

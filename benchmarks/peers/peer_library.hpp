@@ -5,9 +5,11 @@
 
 #include <stickslip/contact.hpp>
 #include <stickslip/ode.hpp>
+#include <stickslip/ode/exact_linear_stepper.hpp>
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <vector>
 
 #include "peers/peer_problems.hpp"
@@ -45,6 +47,58 @@ class LibraryChain {
   stickslip::CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
     return Contact::guard_direction(m, i, false);
   }
+  /// The linear part of mode m (stickslip/ode/linear_part.hpp), exact in every mode (Coulomb
+  /// friction, constant N): x' = v, v' = M^-1 (F cos(w t + phi) - K x - C v + f e_j) with
+  /// f = -sgn mu_k N in slip and row j zero in stick; cos(w t + phi) = cos(phi) cos(w t) -
+  /// sin(phi) sin(w t); the contact's guards, affine in (x, v) and the forcing.
+  bool linear_part(const Mode& m, double, const State&, stickslip::LinearPart<double>& lp) const {
+    const Eigen::Index n = 2 * N;
+    const bool forced = chain_.F.cwiseAbs().maxCoeff() > 0.0;
+    lp.A.setZero(n, n);
+    lp.A.topRightCorner(N, N).setIdentity();
+    lp.A.bottomLeftCorner(N, N) = -(chain_.m.cwiseInverse().asDiagonal() * chain_.K);
+    lp.A.bottomRightCorner(N, N) = -(chain_.m.cwiseInverse().asDiagonal() * chain_.C);
+    lp.b0.setZero(n);
+    lp.omega.assign(forced ? 1u : 0u, p_.force_frequency);
+    lp.bc.setZero(n, forced ? 1 : 0);
+    lp.bs.setZero(n, forced ? 1 : 0);
+    if (forced) {
+      lp.bc.bottomRows(N) = std::cos(p_.force_phase) * chain_.F.cwiseQuotient(chain_.m);
+      lp.bs.bottomRows(N) = -std::sin(p_.force_phase) * chain_.F.cwiseQuotient(chain_.m);
+    }
+    const Eigen::Index j = N + chain_.j;
+    if (m == Mode::Stick) {
+      lp.A.row(j).setZero();
+      if (forced) lp.bc(j, 0) = lp.bs(j, 0) = 0.0;
+    } else {
+      lp.b0[j] = -static_cast<double>(stickslip::slip_sign(m)) * chain_.slip_force / chain_.m[chain_.j];
+    }
+    // Affine guards (the contact's): stick g = mu_s N -/+ f_req with f_req = K_j x + C_j v -
+    // F_j cos(w t + phi); slip g = v_j - v_b.
+    const Eigen::Index K = forced ? 1 : 0;
+    if (m == Mode::Stick) {
+      lp.Gx.resize(2, n);
+      lp.Gx.row(0) << -chain_.K.row(chain_.j), -chain_.C.row(chain_.j);
+      lp.Gx.row(1) = -lp.Gx.row(0);
+      lp.g0.setConstant(2, chain_.capacity);
+      lp.gc.setZero(2, K);
+      lp.gs.setZero(2, K);
+      if (forced) {
+        const double fj = chain_.F[chain_.j];
+        lp.gc.col(0) << fj * std::cos(p_.force_phase), -fj * std::cos(p_.force_phase);
+        lp.gs.col(0) << -fj * std::sin(p_.force_phase), fj * std::sin(p_.force_phase);
+      }
+    } else {
+      lp.Gx.setZero(1, n);
+      lp.Gx(0, j) = 1.0;
+      lp.g0.setConstant(1, -p_.belt_speed);
+      lp.gc.setZero(1, K);
+      lp.gs.setZero(1, K);
+    }
+    lp.exact = true;
+    lp.version = m == Mode::Stick ? 1 : 2;  // A of the two slip directions is the same
+    return true;
+  }
   stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards&, double t,
                                          State& x) const {
     m = contact_.decide(m, sliding_velocity(x), p_.normal_force, stick_force(t, x));
@@ -65,13 +119,26 @@ struct LibraryEventLog : stickslip::NullObserver {
   }
 };
 
+/// Tag for run_library: ExactLinearStepper (the modal-exact method) instead of a HybridStepper
+/// method; tolerance is then unused (every mode of the chains is exact).
+struct ModalExact {};
+
+template <class System, class Method>
+struct StepperFor {
+  using type = stickslip::HybridStepper<System, Method>;
+};
+template <class System>
+struct StepperFor<System, ModalExact> {
+  using type = stickslip::ExactLinearStepper<System>;
+};
+
 template <int N, class Method>
 RunOutcome run_library_n(const ChainParameters& p, double tolerance) {
   LibraryChain<N> sys(p);
   stickslip::StepperOptions<double> opt;
   opt.rtol = opt.atol = tolerance;
   opt.max_steps = 5'000'000;
-  stickslip::HybridStepper<LibraryChain<N>, Method> stepper(sys, opt);
+  typename StepperFor<LibraryChain<N>, Method>::type stepper(sys, opt);
   typename LibraryChain<N>::State x0;
   x0 << p.x0.head<N>(), p.v0.head<N>();
   const Chain<N> chain(p);

@@ -47,8 +47,9 @@ namespace stickslip {
 /// Where r_m != 0 (or linear_part returns false, then with Â = 0, i.e.
 /// plain Dormand-Prince) the Lawson form of Dormand-Prince 5(4) is used with the error control
 /// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
-/// delta in modes with guards; the linear part is refreshed at every accepted step (the system's
-/// `version` tells whether A_m changed).
+/// delta in modes with guards; the linear part is kept frozen while the remainder does not limit
+/// the step (refresh_error; the system's `version` tells whether A_m changed at a refresh), and
+/// steps of one length reuse their stage propagators.
 ///
 /// Events: a guard fires when it crosses at a grid point (GuardMonitor semantics, as in
 /// HybridStepper), or when the cubic Hermite interpolant of its value and slope between two
@@ -106,6 +107,14 @@ class ExactLinearStepper {
   /// the class comment).
   static constexpr int jump_levels = 8;
 
+  /// Inexact modes keep the linear part of their last refresh (A_m frozen, e.g. at the contact
+  /// point X* of a moving contact) and leave its change in the remainder, r_m(t, x) = f(t, x) -
+  /// A_m(X*) x_L - b_m(t). The remainder is the only part the Lawson method does not integrate
+  /// exactly, so it alone makes the error estimate err: the linear part is refreshed at the end
+  /// of an accepted step whose err exceeds refresh_error (the step control's target is
+  /// safety^5 ~ 0.59), i.e. when the grown remainder starts to limit the step.
+  static constexpr double refresh_error = 0.5;
+
   /// Keeps a reference to `system`. Throws std::invalid_argument ("ExactLinearStepper:
   /// options.<name> ...") for options out of range.
   explicit ExactLinearStepper(System& system, StepperOptions<Scalar> options = {})
@@ -125,6 +134,16 @@ class ExactLinearStepper {
     return integrate(std::move(mode), t0, x0, t_end, none);
   }
 
+  /// Mode cache: the propagators of up to `entries` distinct augmented generators Â (the grid
+  /// ladder, the eigenvalue bound, and in exact modes the Van Loan blocks of the grid step and of
+  /// the output interval) are kept for modes that come back, as the few modes of a stick-slip
+  /// run alternate; a revisited mode then uses its closed forms from its first step. Default 8;
+  /// 0 switches the cache off. Entries are kept across integrate() calls.
+  void set_mode_cache_size(std::size_t entries) {
+    flow_.set_cache_size(entries);
+    blocks_.clear();
+  }
+
   /// The options of the stepper (validated at construction).
   const Options& options() const { return opt_; }
   /// Work counters of the last run.
@@ -137,6 +156,11 @@ class ExactLinearStepper {
   // linear_part at (t, x_): Â, the sampling interval, y_ and (inexact modes, when Â changed or
   // `force`) the remainder r_. False when the remainder is not finite.
   bool refresh_linear_part(const Mode& m, Scalar t, bool force, StepperStats& st);
+
+  // Inexact modes: true when the frozen linear part is to be refreshed after an accepted step
+  // with error estimate err (see refresh_error); always without a linear form (Â = 0: nothing
+  // is frozen, linear_part may give one at the next point).
+  bool remainder_grown(Scalar err) const { return lp_.size() == 0 || err > Scalar(refresh_error); }
 
   // ---- evaluations -------------------------------------------------------------------------
   bool remainder(const Mode& m, Scalar t, const Vector& y, Vector& out, StepperStats& st) {
@@ -248,6 +272,18 @@ class ExactLinearStepper {
   Matrix jump_r_, jump_rmax_, jump_e_, jump_tmp_;
   Vector absy_, bound_, yp_;
   bool jumps_valid_ = false;
+  // Per slot of the flow's mode cache: the Van Loan blocks of the Â in that slot (valid while the
+  // slot's stamp is unchanged) for the grid step delta, the output interval and the forms given.
+  struct ModeBlocks {
+    std::uint64_t stamp = 0;
+    Scalar delta = 0;
+    std::vector<Matrix> forms;
+    Matrix phi_grid, w_grid, phi_out, w_out;
+    bool grid = false, out = false;
+  };
+  std::vector<ModeBlocks> blocks_;
+  ModeBlocks* mode_blocks(bool create);
+  void restore_blocks();
   bool forms_ = false, w_grid_valid_ = false, out_valid_ = false;
 };
 
@@ -310,7 +346,9 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
                     : std::numeric_limits<Scalar>::infinity();
   delta_ = std::min(delta_, opt_.max_step);
   // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
-  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_);
+  // Only exact modes go to the mode cache: a frozen inexact Â (a moving contact) rarely recurs
+  // and would evict the few modes of a stick-slip run that do.
+  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_, exact_);
   lawson_.initialize(flow_.dim());
   for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_}) v->resize(flow_.dim());
   // Closed-form pieces of an exact mode: dropped when Â, the grid step or the forms changed.
@@ -329,6 +367,7 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
     w_grid_valid_ = false;
     jumps_valid_ = false;
   }
+  restore_blocks();
   if (closed_form_guards()) {
     const Eigen::Index n = lp_.size(), ng = lp_.Gx.rows();
     ghat_.setZero(ng, flow_.dim());
@@ -345,12 +384,66 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
 }
 
 template <class System>
+auto ExactLinearStepper<System>::mode_blocks(bool create) -> ModeBlocks* {
+  const int slot = flow_.cache_slot();
+  if (!exact_ || slot < 0 || !std::isfinite(delta_)) return nullptr;
+  const auto i = static_cast<std::size_t>(slot);
+  if (blocks_.size() <= i) {
+    if (!create) return nullptr;
+    blocks_.resize(i + 1);
+  }
+  ModeBlocks& b = blocks_[i];
+  const std::uint64_t stamp = flow_.cache_stamp(slot);
+  const bool forms_match = [&] {
+    if (b.forms.size() != lp_.quadrature_forms.size()) return false;
+    for (std::size_t j = 0; j < b.forms.size(); ++j)
+      if (b.forms[j].rows() != lp_.quadrature_forms[j].rows() || b.forms[j] != lp_.quadrature_forms[j])
+        return false;
+    return true;
+  }();
+  if (b.stamp == stamp && b.delta == delta_ && forms_match) return &b;
+  if (!create) return nullptr;
+  b.stamp = stamp;
+  b.delta = delta_;
+  b.forms = lp_.quadrature_forms;
+  b.grid = b.out = false;
+  return &b;
+}
+
+template <class System>
+void ExactLinearStepper<System>::restore_blocks() {
+  if (!flow_.restored()) return;
+  const ModeBlocks* b = mode_blocks(false);
+  if (b == nullptr) return;
+  if (b->grid && !w_grid_valid_) {
+    phi_grid_ = b->phi_grid;
+    w_grid_ = b->w_grid;
+    phi_grid_delta_ = delta_;
+    w_grid_valid_ = true;
+  }
+  if (b->out && !out_valid_) {
+    phi_out_ = b->phi_out;
+    w_out_ = b->w_out;
+    out_valid_ = true;
+  }
+}
+
+template <class System>
 bool ExactLinearStepper<System>::grid_quadrature_ready() {
-  if (!forms_ || mode_steps_ < closed_form_after || !std::isfinite(delta_)) return false;
+  // A mode seen before (mode cache: it comes back, so its blocks pay off) uses them from its
+  // first step; they are computed once per cache entry.
+  if (!forms_ || (mode_steps_ < closed_form_after && !w_grid_valid_ && !flow_.restored()) ||
+      !std::isfinite(delta_))
+    return false;
   if (!w_grid_valid_) {
     flow_.van_loan(delta_, lp_.quadrature_forms, phi_grid_, w_grid_, work_);
     phi_grid_delta_ = delta_;
     w_grid_valid_ = true;
+    if (ModeBlocks* b = mode_blocks(true)) {
+      b->phi_grid = phi_grid_;
+      b->w_grid = w_grid_;
+      b->grid = true;
+    }
   }
   return true;
 }
@@ -695,11 +788,17 @@ bool ExactLinearStepper<System>::emit_samples(Observer& obs, const Mode& m, Scal
       xs_ = x1_;
       ysample = &y1_;
     } else if (exact_ && (forms_ || nq_ == 0) && k_chain_ == k - 1 &&
-               (mode_samples_ >= closed_form_after || mode_steps_ >= closed_form_after)) {
+               (mode_samples_ >= closed_form_after || mode_steps_ >= closed_form_after ||
+                out_valid_ || flow_.restored())) {
       // One interval on from the previous sample of this mode: y(ts) = exp(Â h_out) y(ts - h_out).
       if (!out_valid_) {
         flow_.van_loan(opt_.output_interval, lp_.quadrature_forms, phi_out_, w_out_, work_);
         out_valid_ = true;
+        if (ModeBlocks* b = mode_blocks(true)) {
+          b->phi_out = phi_out_;
+          b->w_out = w_out_;
+          b->out = true;
+        }
       }
       ys_.noalias() = phi_out_ * y_chain_;
       ++work_.matvecs;
@@ -807,7 +906,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       err = lawson_.step(
           flow_,
           [&](Scalar tt, const Vector& y, Vector& out) { return remainder(mode, tt, y, out, st); },
-          t_, y_, r_, h, y1_, r1_, opt_.rtol, opt_.atol, work_);
+          t_, y_, r_, h, y1_, r1_, opt_.rtol, opt_.atol, work_, true);
       if (std::isnan(err) || !detail::all_finite(y1_) || err > Scalar(1)) {
         ++st.rejected_steps;
         const bool bad = std::isnan(err) || !detail::all_finite(y1_);
@@ -902,8 +1001,9 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
                     "stopped by observer " + detail::at_time(t_));
     if (!exact_) {
       r_.swap(r1_);
-      if (linear_) {
-        // A_m may follow the state (the contact point moves): refresh, keeping the step.
+      if (linear_ && remainder_grown(err)) {
+        // A_m follows the state (the contact point moves): refresh it, keeping the step.
+        ++work_.linear_part_refreshes;
         if (!refresh_linear_part(mode, t_, false, st))
           return finish(r, Status::NonFiniteState, t_, x_, mode,
                         "right-hand side not finite " + detail::at_time(t_));

@@ -38,6 +38,8 @@ struct ExactStepperStats {
   long linear_part_calls = 0;    ///< calls of System::linear_part
   long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
   long long_steps = 0;           ///< exact steps of several grid steps (guard-rate bound)
+  long linear_part_refreshes = 0;  ///< refreshes of a frozen linear part in inexact modes
+  long mode_cache_hits = 0;      ///< modes whose propagators came from the mode cache
 };
 
 namespace detail {
@@ -69,10 +71,30 @@ class AugmentedFlow {
       }
     }
     const bool same = a_.rows() == dim && a_ == build_;
+    bool restored = false;
     if (!same) {
+      ++generation_;
       a_.swap(build_);
       ladder_k_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
+      slot_ = -1;
+      for (std::size_t i = 0; i < cache_.size() && i < cache_size_; ++i) {
+        Entry& e = cache_[i];
+        if (e.ladder_k < 0 || e.a.rows() != dim || !(e.a == a_)) continue;
+        ladder_ = e.ladder;  // same sizes after warm-up: no allocation
+        ladder_k_ = e.ladder_k;
+        base_ = e.base;
+        rate_ = e.rate;
+        slot_ = static_cast<int>(i);
+        restored = true;
+        ++st.mode_cache_hits;
+        break;
+      }
+    }
+    last_restored_ = restored || (same && last_restored_);
+    if (restored) {
+      version_ = lp.version;
+      rate_valid_ = true;
     }
     const bool rate_stale = !rate_valid_ || version_ != lp.version || n_ != n;
     nx_ = nx;
@@ -100,6 +122,8 @@ class AugmentedFlow {
   Eigen::Index state_size() const noexcept { return nx_; }
   Eigen::Index linear_size() const noexcept { return n_; }
   const Matrix& generator() const noexcept { return a_; }
+  /// Changes (increments) whenever Â changes; starts at 1 with the first assign().
+  std::uint64_t generation() const noexcept { return generation_; }
 
   /// max(|lambda(A_m)|, w_k): the fastest rate (rad per time unit) of the mode's solutions.
   Scalar fastest_rate() const noexcept { return fastest_; }
@@ -136,8 +160,9 @@ class AugmentedFlow {
   /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
   /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
   /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
-  /// while Â and base do not change.
-  void prepare(Scalar base, ExactStepperStats& st) {
+  /// while Â and base do not change; with `keep`, also in the mode cache for a later mode with
+  /// the same Â.
+  void prepare(Scalar base, ExactStepperStats& st, bool keep = true) {
     if (!(base > 0) || !std::isfinite(base) || !(norm1_ > 0)) {
       ladder_k_ = -1;
       return;
@@ -161,7 +186,35 @@ class AugmentedFlow {
     }
     base_ = base;
     ladder_k_ = K;
+    if (keep && cache_size_ > 0) {  // for a later mode with the same Â (round robin)
+      if (cache_.size() < cache_size_) cache_.emplace_back();
+      slot_ = static_cast<int>(next_slot_ % cache_.size());
+      ++next_slot_;
+      Entry& e = cache_[static_cast<std::size_t>(slot_)];
+      e.a = a_;
+      e.ladder = ladder_;
+      e.ladder_k = K;
+      e.base = base;
+      e.rate = rate_;
+      ++e.stamp;
+    }
   }
+
+  /// Keep the ladders (and eigenvalue bounds) of up to `entries` distinct Â for modes that come
+  /// back (0: none); clears the cache.
+  void set_cache_size(std::size_t entries) {
+    cache_size_ = entries;
+    cache_.clear();
+    slot_ = -1;
+    next_slot_ = 0;
+  }
+  /// Cache slot holding the current Â's ladder (-1: none) and its stamp, which changes whenever
+  /// the slot is given to another Â (for the stepper's own per-mode blocks).
+  int cache_slot() const noexcept { return slot_; }
+  /// Stamp of cache slot `slot` (see cache_slot()).
+  std::uint64_t cache_stamp(int slot) const { return cache_[static_cast<std::size_t>(slot)].stamp; }
+  /// True when the current Â's ladder came from the cache (a mode seen before).
+  bool restored() const noexcept { return last_restored_; }
 
   /// Phi = exp(Â tau) and, for quadratic forms Q_j of the quadrature rates (LinearPart::
   /// quadrature_forms, in z = (x_L, clock); none: w empty), the stacked
@@ -256,6 +309,17 @@ class AugmentedFlow {
     }
   }
 
+  struct Entry {
+    Matrix a;
+    std::vector<Matrix> ladder;
+    int ladder_k = -1;
+    Scalar base = 0, rate = 0;
+    std::uint64_t stamp = 0;
+  };
+  std::vector<Entry> cache_;
+  std::size_t cache_size_ = 8, next_slot_ = 0;
+  int slot_ = -1;
+  bool last_restored_ = false;
   Matrix a_, build_, big_, big_exp_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;
@@ -264,7 +328,7 @@ class AugmentedFlow {
   Eigen::Index nx_ = 0, n_ = 0;
   Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
-  std::uint64_t version_ = 0;
+  std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;
 };
 

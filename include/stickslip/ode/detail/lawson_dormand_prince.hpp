@@ -17,8 +17,11 @@
 #include <stickslip/ode/detail/step_control.hpp>
 
 #include <Eigen/Core>
+#include <unsupported/Eigen/MatrixFunctions>
 
 #include <array>
+#include <cstdint>
+#include <limits>
 
 namespace stickslip {
 namespace detail {
@@ -30,20 +33,26 @@ class LawsonDormandPrince {
   static constexpr int order = 5;
   static constexpr int error_order = 4;
 
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+
   /// Size the stage vectors (allocates only when dim grows).
   void initialize(Eigen::Index dim) {
     for (Vector& v : k_) v.resize(dim);
     p_.resize(dim);
     ys_.resize(dim);
+    prod_.resize(dim);
   }
 
   /// One step of size h from (t, y0) with r0 = R(t, y0): writes y1 and r1 = R(t + h, y1), returns
   /// the weighted RMS error (over the first nx components). `rem(t, y, out)` evaluates R and
-  /// returns false when it is not finite (the step then returns NaN).
+  /// returns false when it is not finite (the step then returns NaN). With `reuse` (steps of the
+  /// run, not trial points inside one), a step of the same h as the previous such step on the same
+  /// Â uses the five stage propagators exp((c_i - c_{i-1}) h Â), computed once for that h by Padé
+  /// (one product per carried vector instead of a ladder walk and a Taylor series).
   template <class Remainder>
   Scalar step(AugmentedFlow<Scalar>& flow, Remainder&& rem, Scalar t, const Vector& y0,
               const Vector& r0, Scalar h, Vector& y1, Vector& r1, Scalar rtol, Scalar atol,
-              ExactStepperStats& st) {
+              ExactStepperStats& st, bool reuse = false) {
     const auto c = [](double v) { return static_cast<Scalar>(v); };
     static constexpr std::array<double, 7> cs{0.0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1.0, 1.0};
     static constexpr double a[6][5] = {
@@ -59,13 +68,42 @@ class LawsonDormandPrince {
                                              71.0 / 1920,      -17253.0 / 339200,
                                              22.0 / 525,       -1.0 / 40};
     const Eigen::Index nx = flow.state_size();
+    bool cached = false;
+    // Lengths equal to 1e-12 relative share the propagators: the difference is round-off of t
+    // (steps cut to end on an output sample differ in the last bits).
+    const auto same = [h](Scalar other) {
+      using std::abs;
+      return abs(h - other) <= Scalar(1e-12) * h;
+    };
+    if (reuse) {
+      if (!(same(cached_h_) && flow.generation() == cached_generation_) && same(last_h_) &&
+          flow.generation() == last_generation_) {
+        for (int i = 1; i < 6; ++i) {
+          const auto iu = static_cast<std::size_t>(i);
+          work_ = flow.generator() * (c(cs[iu] - cs[iu - 1]) * h);
+          stage_[iu - 1] = work_.exp();
+          ++st.propagator_exponentials;
+        }
+        cached_h_ = h;
+        cached_generation_ = flow.generation();
+      }
+      cached = same(cached_h_) && flow.generation() == cached_generation_;
+      last_h_ = h;
+      last_generation_ = flow.generation();
+    }
     p_ = y0;
     k_[0] = r0;
     for (int i = 1; i < 6; ++i) {
       // Carry y0 and R_0 .. R_{i-1} from c_{i-1} h to c_i h.
-      const Scalar dt = c(cs[static_cast<std::size_t>(i)] - cs[static_cast<std::size_t>(i - 1)]) * h;
-      flow.expv(dt, p_, st);
-      for (int j = 0; j < i; ++j) flow.expv(dt, k_[static_cast<std::size_t>(j)], st);
+      const auto iu = static_cast<std::size_t>(i);
+      const Scalar dt = c(cs[iu] - cs[iu - 1]) * h;
+      if (cached) {
+        carry(stage_[iu - 1], p_, st);
+        for (std::size_t j = 0; j < iu; ++j) carry(stage_[iu - 1], k_[j], st);
+      } else {
+        flow.expv(dt, p_, st);
+        for (int j = 0; j < i; ++j) flow.expv(dt, k_[static_cast<std::size_t>(j)], st);
+      }
       ys_ = p_;
       for (int j = 0; j < i; ++j)
         if (a[i][j] != 0.0) ys_.noalias() += (h * c(a[i][j])) * k_[static_cast<std::size_t>(j)];
@@ -84,8 +122,20 @@ class LawsonDormandPrince {
   }
 
  private:
+  void carry(const Matrix& e, Vector& v, ExactStepperStats& st) {
+    prod_.noalias() = e * v;
+    v.swap(prod_);
+    ++st.matvecs;
+  }
+
   std::array<Vector, 6> k_;
-  Vector p_, ys_;
+  Vector p_, ys_, prod_;
+  // Stage propagators exp((c_i - c_{i-1}) h Â) of cached_h_ on Â of cached_generation_, and the
+  // h and Â of the last step with reuse.
+  std::array<Matrix, 5> stage_;
+  Matrix work_;
+  Scalar cached_h_ = 0, last_h_ = 0;
+  std::uint64_t cached_generation_ = 0, last_generation_ = 0;
 };
 
 }  // namespace detail
