@@ -57,13 +57,17 @@ struct LinearLimit {
   Eigen::MatrixXd A;
   Eigen::VectorXcd forcing;  ///< bc - i bs: b(t) = Re(forcing e^{i w t})
   Eigen::Index modes = 0;
-  /// |lambda| / 2 pi [Hz] of the oscillatory eigenvalues of A (Im lambda > 0), ascending: the
+  /// |lambda| / 2 pi [Hz] of the oscillatory eigenvalues of A (Im lambda > 1e-6 |lambda|: not the
+  /// zero eigenvalues of the stuck family or of the frozen contact coordinates, which round-off
+  /// splits into tiny complex pairs: |lambda| > 1e-6 max |lambda| too), ascending: the
   /// undamped natural frequencies of the limit's modes.
   std::vector<double> natural_frequencies_hz() const {
     const Eigen::VectorXcd ev = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
+    const double scale = ev.cwiseAbs().maxCoeff();
     std::vector<double> f;
     for (Eigen::Index k = 0; k < ev.size(); ++k)
-      if (ev[k].imag() > 0) f.push_back(std::abs(ev[k]) / (2 * M_PI));
+      if (ev[k].imag() > 1e-6 * std::abs(ev[k]) && std::abs(ev[k]) > 1e-6 * scale)
+        f.push_back(std::abs(ev[k]) / (2 * M_PI));
     std::sort(f.begin(), f.end());
     return f;
   }
@@ -137,6 +141,10 @@ struct FrcBranch {
   std::string status;   ///< stickslip::ContinuationStatus name, or "start_failed" with the message
   std::string message;
   std::string monodromy;  ///< the monodromy method the branch used
+  /// The linear limits at this preload (the damper mass m = 2 N0 / (r Omega^2) changes with it):
+  /// rows (f [Hz], all-stuck tip, frictionless tip), and their natural frequencies [Hz].
+  std::vector<std::array<double, 3>> linear;
+  std::vector<double> stuck_hz, free_hz;
   double cpu_seconds = 0;
   std::vector<FrcPoint> points;
 };
@@ -394,8 +402,7 @@ inline std::string json_escape(const std::string& text) {
 
 /// Writes frc.csv (one row per point), frc_linear.csv and frc.json into `out`.
 inline void write_frc(const std::filesystem::path& out, const BladeParameters& p, const FrcSettings& s,
-                      const std::vector<FrcBranch>& branches, const std::vector<std::array<double, 3>>& linear,
-                      const std::vector<double>& stuck_hz, const std::vector<double>& free_hz) {
+                      const std::vector<FrcBranch>& branches) {
   {
     std::ofstream o(out / "frc.csv");
     o << "preload_N,frequency_hz,tip_amplitude_m,tip_max_abs_m,stable,instability,max_multiplier,regime,stick_fraction_1,"
@@ -410,8 +417,10 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   }
   {
     std::ofstream o(out / "frc_linear.csv");
-    o << "frequency_hz,tip_all_stuck_m,tip_frictionless_m\n";
-    for (const auto& r : linear) o << fmt(r[0]) << ',' << fmt(r[1]) << ',' << fmt(r[2]) << '\n';
+    o << "preload_N,frequency_hz,tip_all_stuck_m,tip_frictionless_m\n";
+    for (const auto& b : branches)
+      for (const auto& r : b.linear)
+        o << fmt(b.preload) << ',' << fmt(r[0]) << ',' << fmt(r[1]) << ',' << fmt(r[2]) << '\n';
   }
   std::ofstream j(out / "frc.json");
   auto list = [&](const std::vector<double>& v) {
@@ -421,8 +430,7 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   };
   j << "{\n  \"f_lo_hz\": " << jnum(s.f_lo) << ", \"f_hi_hz\": " << jnum(s.f_hi)
     << ", \"damping_ratio\": " << jnum(p.damping_ratio) << ", \"force_N\": " << jnum(p.force)
-    << ",\n  \"all_stuck_frequencies_hz\": " << list(stuck_hz) << ",\n  \"frictionless_frequencies_hz\": "
-    << list(free_hz) << ",\n  \"regime_rule\": \"" << regime_rule_text()
+    << ",\n  \"regime_rule\": \"" << regime_rule_text()
     << " (here over one period of the orbit)\",\n  \"branches\": [";
   for (std::size_t k = 0; k < branches.size(); ++k) {
     const auto& b = branches[k];
@@ -430,7 +438,8 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
                                        [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
-      << ", \"cpu_s\": " << jnum(b.cpu_seconds);
+      << ", \"cpu_s\": " << jnum(b.cpu_seconds)
+      << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
     if (peak != b.points.end())
       j << ", \"peak_tip_m\": " << jnum(peak->tip_amplitude) << ", \"peak_frequency_hz\": " << jnum(peak->omega / (2 * M_PI));
     j << "}";
@@ -448,23 +457,22 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
                 "(--damping to change)\n");
   }
   p.model.energy_audit = false;  // quadratures: not periodic, not needed here
-  BladeScene scene = make_blade_scene(p);
-  const auto limits = blade_linear_limits(scene);
-  const std::vector<double> stuck_hz = limits[0].natural_frequencies_hz(), free_hz = limits[1].natural_frequencies_hz();
-  const double scale = frc_state_scale(scene, s);
-  std::printf("frc: %.1f..%.1f Hz, damping %.3g, lowest mode %.2f Hz all stuck, %.2f Hz frictionless (model's linear part); "
-              "preloads", s.f_lo, s.f_hi, p.damping_ratio, stuck_hz[0], free_hz[0]);
+  std::printf("frc: %.1f..%.1f Hz, damping %.3g, preloads", s.f_lo, s.f_hi, p.damping_ratio);
   for (double n0 : preloads) std::printf(" %g", n0);
   std::printf(" N\n");
   std::fflush(stdout);
-  const auto linear = frc_linear_curves(scene, s);
   std::vector<FrcBranch> branches;
   for (double n0 : preloads) {
     BladeParameters q = p;
     q.preload = n0;
     BladeScene sc = make_blade_scene(q);
+    const auto limits = blade_linear_limits(sc);
+    std::vector<double> stuck_hz = limits[0].natural_frequencies_hz(), free_hz = limits[1].natural_frequencies_hz();
+    std::vector<std::array<double, 3>> linear = frc_linear_curves(sc, s);
+    std::printf("frc N0 %g N: lowest mode %.2f Hz all stuck, %.2f Hz frictionless (the model's linear part)\n", n0,
+                stuck_hz.empty() ? 0.0 : stuck_hz[0], free_hz.empty() ? 0.0 : free_hz[0]);
     int count = 0;
-    auto b = frc_branch(sc, s, scale, [&](const FrcPoint& f) {
+    auto b = frc_branch(sc, s, frc_state_scale(sc, s), [&](const FrcPoint& f) {
       std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s\n", n0,
                   ++count, f.omega / (2 * M_PI), f.tip_amplitude,
                   f.stable ? "stable" : f.instability.c_str(), f.regime.c_str(), f.stick_fraction[0],
@@ -473,9 +481,12 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
     });
     std::printf("frc N0 %g N: %s, %zu points, %.1f s%s%s\n", n0, b.status.c_str(), b.points.size(), b.cpu_seconds,
                 b.message.empty() ? "" : ": ", b.message.c_str());
+    b.linear = std::move(linear);
+    b.stuck_hz = std::move(stuck_hz);
+    b.free_hz = std::move(free_hz);
     branches.push_back(std::move(b));
   }
-  write_frc(out, p, s, branches, linear, stuck_hz, free_hz);
+  write_frc(out, p, s, branches);
   std::size_t points = 0;
   double cpu = 0;
   std::string peaks;

@@ -201,7 +201,7 @@ def plot_compare(out):
 def plot_frc(out):
     """frc.csv and frc_linear.csv (blade_damper --frc): tip amplitude against excitation frequency per
     preload, solid where stable and dashed where unstable, markers coloured by regime, with the
-    linear all-stuck and frictionless (mu = 0) curves."""
+    linear all-stuck and frictionless (mu = 0) curves at each preload (thin, same colour)."""
     path = os.path.join(out, "frc.csv")
     if not os.path.exists(path):
         return []
@@ -209,10 +209,6 @@ def plot_frc(out):
         rows = list(csv.DictReader(fh))
     lin = read_csv(os.path.join(out, "frc_linear.csv"))
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    if lin:
-        ax.semilogy(lin["frequency_hz"], lin["tip_all_stuck_m"], color="k", lw=1.0, label="all stuck (linear)")
-        ax.semilogy(lin["frequency_hz"], lin["tip_frictionless_m"], color="gray", lw=1.0, ls=":",
-                    label="frictionless, mu = 0 (linear)")
     regimes = sorted({r["regime"] for r in rows})
     colour = {g: plt.cm.tab10(k) for k, g in enumerate(regimes)}
     for k, n0 in enumerate(sorted({float(r["preload_N"]) for r in rows})):
@@ -221,6 +217,13 @@ def plot_frc(out):
         a = [float(r["tip_amplitude_m"]) for r in pts]
         stable = [r["stable"] == "1" for r in pts]
         line = plt.cm.Set1(k)
+        if lin:  # the linear limits at this preload (the damper mass depends on N0)
+            idx = [i for i, v in enumerate(lin["preload_N"]) if v == n0]
+            fl = [lin["frequency_hz"][i] for i in idx]
+            ax.semilogy(fl, [lin["tip_all_stuck_m"][i] for i in idx], color=line, lw=0.7, alpha=0.6,
+                        label=f"all stuck, linear (N0 = {n0:g} N)")
+            ax.semilogy(fl, [lin["tip_frictionless_m"][i] for i in idx], color=line, lw=0.7, ls=":", alpha=0.6,
+                        label=f"frictionless mu = 0, linear (N0 = {n0:g} N)")
         for i in range(len(pts) - 1):  # segment style from its two ends: dashed unless both stable
             ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4, ls="-" if stable[i] and stable[i + 1] else "--",
                         label=f"N0 = {n0:g} N" if i == 0 else None)
@@ -228,7 +231,7 @@ def plot_frc(out):
     for g in regimes:
         ax.scatter([], [], s=12, color=colour[g], label=f"regime: {g}")
     ax.set_xlabel("excitation frequency [Hz]")
-    ax.set_ylabel("tip amplitude max |x_tip| [m]")
+    ax.set_ylabel("tip amplitude, half peak-to-peak [m]")
     ax.set_title("Blade tip frequency response (periodic orbits; solid stable, dashed unstable)")
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=7)
