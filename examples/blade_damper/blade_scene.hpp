@@ -64,6 +64,24 @@ struct BladeScene {
   System::Vector tip_shape;
 };
 
+/// The friction-damped system of scene `s` (its frame, members and modes) with the dampers and
+/// the load of `p`: for parameter studies that change the friction, the preload or the load but
+/// not the structure (frequency-response curves, blade_frc.hpp).
+inline BladeScene::System make_blade_system(const BladeScene& s, const BladeParameters& p) {
+  using namespace stickslip;
+  FrictionLawVariant<double> law = CoulombLaw<double>(p.mu_s, p.mu_k);
+  if (p.regularised_v_eps > 0) law = RegularisedLaw<double>(p.mu_k, p.regularised_v_eps);
+  const double m = p.damper_mass();
+  const double X_left = p.L2 / 2 - p.damper_offset, X_right = p.L2 / 2 + p.damper_offset;
+  std::vector<PointDamper<double>> dampers;
+  dampers.emplace_back(s.platform_member, X_left, m, p.k, p.preload, law, p.share);
+  dampers.emplace_back(s.platform_member, X_right, m, p.k, p.preload, law, p.share);
+  apply_contact_options(p.contact, dampers);
+  std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(
+      s.blade_member, p.y0, LoadDirection::GlobalX, p.force, p.force_omega)};
+  return BladeScene::System(s.frame, s.basis, std::move(dampers), std::move(loads), p.model);
+}
+
 /// Builds the default blade-damper scene for the given parameters.
 inline BladeScene make_blade_scene(const BladeParameters& p) {
   using namespace stickslip;
@@ -87,17 +105,7 @@ inline BladeScene make_blade_scene(const BladeParameters& p) {
     s.basis = s.basis.with_modal_damping(
         Eigen::VectorXd::Constant(s.basis.size(), p.damping_ratio));
 
-  FrictionLawVariant<double> law = CoulombLaw<double>(p.mu_s, p.mu_k);
-  if (p.regularised_v_eps > 0) law = RegularisedLaw<double>(p.mu_k, p.regularised_v_eps);
-  const double m = p.damper_mass();
-  const double X_left = p.L2 / 2 - p.damper_offset, X_right = p.L2 / 2 + p.damper_offset;
-  std::vector<PointDamper<double>> dampers;
-  dampers.emplace_back(s.platform_member, X_left, m, p.k, p.preload, law, p.share);
-  dampers.emplace_back(s.platform_member, X_right, m, p.k, p.preload, law, p.share);
-  apply_contact_options(p.contact, dampers);
-  std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(
-      s.blade_member, p.y0, LoadDirection::GlobalX, p.force, p.force_omega)};
-  s.system = std::make_unique<BladeScene::System>(f, s.basis, std::move(dampers), std::move(loads), p.model);
+  s.system = std::make_unique<BladeScene::System>(make_blade_system(s, p));
   s.tip_shape = s.system->point_shape(s.blade_member, p.L1, LoadDirection::GlobalX);
   return s;
 }

@@ -3,6 +3,7 @@
 // preload sweep with a regime map, re-runs one representative preload per regime found
 // (blade_regime.hpp) with full records, and prints a summary. `blade_damper --help` for options.
 #include "blade_compare.hpp"
+#include "blade_frc.hpp"
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
@@ -50,6 +51,7 @@ struct Cli {
   std::string compare;            // --compare: variants of the trade study (empty: none)
   int compare_repeats = 3;
   double compare_reference_rtol = 1e-10;
+  std::optional<blade::FrcSettings> frc;  // --frc: frequency-response curves (blade_frc.hpp)
 };
 
 const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
@@ -88,6 +90,13 @@ Usage: blade_damper [options]
   --compare-repeats n    runs per variant, CPU time = median (default 3)
   --compare-reference-rtol r  the reference's rtol (default 1e-10; atol = 1e-3 r), validated
                          by a rerun at r / 100
+  --frc lo:hi            frequency-response curves over lo..hi Hz at the preloads (default
+                         1,5,26 N): continuation of the periodic orbits, with the all-stuck
+                         and frictionless linear curves (OUT/frc.csv, frc_linear.csv,
+                         frc.json; docs/steady_state.md); modal damping 0.05 unless --damping
+  --frc-points n         (after --frc) points per branch at most (default 300)
+  --frc-variational      (after --frc) the variational monodromy throughout (default: finite
+                         differences, variational for a branch that starts stuck all period)
   --threads n            worker threads of the sweep (default: all cores)
   --out DIR              output folder (default out)
   --help                 this text
@@ -158,6 +167,14 @@ Cli parse(int argc, char** argv) {
       c.compare_repeats = std::stoi(need(i));
     } else if (a == "--compare-reference-rtol") {
       c.compare_reference_rtol = std::stod(need(i));
+    } else if (a == "--frc") {
+      c.frc = blade::parse_frc_range(need(i));
+    } else if (a == "--frc-points") {
+      if (!c.frc) throw std::invalid_argument("--frc-points must follow --frc");
+      c.frc->max_points = std::stoi(need(i));
+    } else if (a == "--frc-variational") {
+      if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
+      c.frc->finite_difference_monodromy = false;
     } else if (a == "--threads") {
       c.threads = std::stoi(need(i));
     } else if (a == "--out") {
@@ -169,7 +186,7 @@ Cli parse(int argc, char** argv) {
   if (!(c.settings.duration > 0)) throw std::invalid_argument("--duration must be > 0");
   if (c.params.platform_elements % 2 != 0)
     throw std::invalid_argument("--platform-elements must be even (the blade tip is the platform's middle node)");
-  if (c.preloads.empty() && !c.sweep) c.preloads = {12.0};
+  if (c.preloads.empty() && !c.sweep) c.preloads = c.frc ? std::vector<double>{1.0, 5.0, 26.0} : std::vector<double>{12.0};
   c.settings.record_window = std::min(1.0, c.settings.duration);
   c.settings.fit_energy_window();
   return c;
@@ -192,18 +209,9 @@ Frequencies frequencies(blade::BladeScene& scene) {
   Frequencies fr;
   const auto& omega = scene.basis.omega();
   for (Index j = 0; j < omega.size(); ++j) fr.frame.push_back(omega[j] / (2 * M_PI));
-  const Index n = scene.basis.size();
-  Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n, n), K = scene.system->omega_squared().asDiagonal();
-  for (const auto& d : scene.system->dampers()) {
-    const Eigen::VectorXd a = scene.system->point_shape(d.member, d.contact_coordinate, LoadDirection::Transverse);
-    const Eigen::VectorXd b = scene.system->point_shape(d.member, d.contact_coordinate, LoadDirection::Axial);
-    const double m = d.effective_mass();
-    M += m * b * b.transpose();
-    if (scene.system->options().normal_load == NormalLoad::Inertial) M += m * a * a.transpose();
-    K += d.effective_stiffness() * b * b.transpose();
-  }
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
-  for (Index j = 0; j < n; ++j) fr.stuck.push_back(std::sqrt(std::max(0.0, es.eigenvalues()[j])) / (2 * M_PI));
+  Eigen::MatrixXd M, K;
+  blade::linear_matrices(scene, true, M, K);
+  for (double w : blade::linear_frequencies(M, K)) fr.stuck.push_back(w / (2 * M_PI));
   return fr;
 }
 
@@ -455,6 +463,7 @@ int main(int argc, char** argv) {
     fs::create_directories(c.out);
     const fs::path out(c.out);
     if (!c.compare.empty()) return run_compare(c, out);
+    if (c.frc) return blade::run_frc(c.params, c.preloads, *c.frc, out);
     std::printf("blade_damper: paper section 3 parameters, %d modes, %d + %d elements, integrator %s "
                 "(rtol %.0e), duration %.1f s, output in %s/\n",
                 c.params.modes, c.params.blade_elements, c.params.platform_elements,

@@ -4,7 +4,8 @@
 Usage: /usr/bin/python3 examples/blade_damper/plot.py OUT_DIR
 Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv, sweep.csv and sweep.json written by
 blade_damper, and the same records of each regime's representative run in OUT_DIR/regime_*/;
-with compare.csv (blade_damper --compare) also the work-precision figure compare.png.
+with compare.csv (blade_damper --compare) also the work-precision figure compare.png; with frc.csv
+(blade_damper --frc) the frequency-response curves frc.png.
 Regime names come from sweep.json (the example's one rule, blade_regime.hpp), not from here.
 """
 import csv
@@ -198,6 +199,50 @@ def plot_compare(out):
     return [png]
 
 
+def plot_frc(out):
+    """frc.csv and frc_linear.csv (blade_damper --frc): tip amplitude against excitation frequency per
+    preload, solid where stable and dashed where unstable, markers coloured by regime, with the
+    linear all-stuck and frictionless (mu = 0) curves at each preload (thin, same colour)."""
+    path = os.path.join(out, "frc.csv")
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    lin = read_csv(os.path.join(out, "frc_linear.csv"))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    regimes = sorted({r["regime"] for r in rows})
+    colour = {g: plt.cm.tab10(k) for k, g in enumerate(regimes)}
+    for k, n0 in enumerate(sorted({float(r["preload_N"]) for r in rows})):
+        pts = [r for r in rows if float(r["preload_N"]) == n0]
+        f = [float(r["frequency_hz"]) for r in pts]
+        a = [float(r["tip_amplitude_m"]) for r in pts]
+        stable = [r["stable"] == "1" for r in pts]
+        line = plt.cm.Set1(k)
+        if lin:  # the linear limits at this preload (the damper mass depends on N0)
+            idx = [i for i, v in enumerate(lin["preload_N"]) if v == n0]
+            fl = [lin["frequency_hz"][i] for i in idx]
+            ax.semilogy(fl, [lin["tip_all_stuck_m"][i] for i in idx], color=line, lw=0.7, alpha=0.6,
+                        label=f"all stuck, linear (N0 = {n0:g} N)")
+            ax.semilogy(fl, [lin["tip_frictionless_m"][i] for i in idx], color=line, lw=0.7, ls=":", alpha=0.6,
+                        label=f"frictionless mu = 0, linear (N0 = {n0:g} N)")
+        for i in range(len(pts) - 1):  # segment style from its two ends: dashed unless both stable
+            ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4, ls="-" if stable[i] and stable[i + 1] else "--",
+                        label=f"N0 = {n0:g} N" if i == 0 else None)
+        ax.scatter(f, a, s=9, zorder=3, c=[colour[r["regime"]] for r in pts])
+    for g in regimes:
+        ax.scatter([], [], s=12, color=colour[g], label=f"regime: {g}")
+    ax.set_xlabel("excitation frequency [Hz]")
+    ax.set_ylabel("tip amplitude, half peak-to-peak [m]")
+    ax.set_title("Blade tip frequency response (periodic orbits; solid stable, dashed unstable)")
+    ax.grid(True, which="both", lw=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    png = os.path.join(out, "frc.png")
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return [png]
+
+
 def main():
     out = sys.argv[1] if len(sys.argv) > 1 else "out"
     made = []
@@ -212,6 +257,7 @@ def main():
             made += plot_run(folder, tag, f"{rep['regime']} (N0 = {rep['preload_N']:.3g} N)")
     made += plot_sweep(out, info)
     made += plot_compare(out)
+    made += plot_frc(out)
     print(f"plot.py: wrote {len(made)} PNG figures in {out}/ and its regime_*/ folders")
 
 

@@ -109,13 +109,17 @@ struct ContinuationResult {
 ///
 /// predictor y_k + ds tau, Newton corrector on both equations with dG/dx_P = M_PP - I (the
 /// monodromy of ShootingOptions) and dG/dp by central differences of re-shot orbits
-/// (h = fd_step max(1, |p|)). tau: at the start the null vector of [dG/dx_P, dG/dp] (towards
-/// options.direction); then the secant of the last two points, so the branch turns at folds.
+/// (h = fd_step max(1, |p|)); the corrector step is Shooting::newton_step's (minimum-norm when
+/// the matrix is singular to the monodromy's accuracy: a family of orbits, e.g. a damper stuck
+/// all period, is crossed the least). tau: at the start the null vector of [dG/dx_P, dG/dp]
+/// with the least x_P part (towards options.direction); then the secant of the last two points,
+/// so the branch turns at folds.
 /// Step control: a corrector converged in <= fast_iterations grows ds by `growth` (up to
 /// max_step), one that needs more than half the allowed iterations halves it, a failure halves it
 /// and retries (down to min_step). The arclength norm is Euclidean in (x_P, p): scale the
-/// parameter (or the states) so that both are of order one. The start mode and t0 are kept along
-/// the branch (choose t0 so that the orbit is not switching there). The system is left at the
+/// parameter (or the states) so that both are of order one. t0 is kept along the branch; the
+/// start mode too, unless a start_mode() rule re-decides it from each iterate (needed when a
+/// switch of the orbit crosses t0 along the branch). The system is left at the
 /// parameter of the last point. Throws std::invalid_argument for caller errors only.
 template <class System>
 class Continuation {
@@ -132,6 +136,9 @@ class Continuation {
   using PeriodOf = std::function<Scalar(Scalar)>;
   /// Called after each accepted point (progress output).
   using OnPoint = std::function<void(const ContinuationPoint<System>&)>;
+  /// The mode at t0 for the state x (the previous mode given): e.g. a FrictionDampedSystem's
+  /// make_consistent on a copy of x.
+  using StartMode = std::function<Mode(System&, Scalar, const State&, const Mode&)>;
   /// The result type.
   using Result = ContinuationResult<System>;
 
@@ -149,6 +156,11 @@ class Continuation {
   /// Call `on_point(point)` after each accepted point.
   void on_point(OnPoint f) { on_point_ = std::move(f); }
 
+  /// Re-decide the start mode of every orbit run from its start state: mode =
+  /// rule(system, t0, x, previous mode) (default: the mode given to run() throughout). An orbit
+  /// is periodic when the run ends in the mode so decided.
+  void start_mode(StartMode rule) { start_mode_ = std::move(rule); }
+
   /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)).
   /// Throws std::invalid_argument for p0 outside the range, or (via Shooting) for bad x0/t0.
   Result run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0);
@@ -162,11 +174,15 @@ class Continuation {
     set_(sys_, p);
     return run_period(sys_, mode, t0, x, period_(p), shooting_.options(), monodromy);
   }
+  // The start mode for x at the current parameter (start_mode_, else `mode`).
+  Mode mode_at(const Mode& mode, Scalar t0, const State& x) {
+    return start_mode_ ? start_mode_(sys_, t0, x, mode) : mode;
+  }
   // dG/dp at (x, p) by central differences; false (and why) when a run fails.
   bool parameter_derivative(const Mode& mode, Scalar t0, const State& x, Scalar p, Vector& gp,
                             std::string& why);
-  // Corrector from y_pred along tau; true with the orbit, else why.
-  bool correct(const Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
+  // Corrector from y_pred along tau; true with the orbit (and its start mode), else why.
+  bool correct(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
                const State& x_pred, Scalar p_pred, PeriodicOrbit<System>& orbit, int& iterations,
                std::string& why);
   Vector pack(const State& x, Scalar p) const {
@@ -186,6 +202,7 @@ class Continuation {
   Shooting<System> shooting_;
   ContinuationOptions<Scalar> opt_;
   OnPoint on_point_;
+  StartMode start_mode_;
   std::vector<Eigen::Index> P_;
 };
 
@@ -209,7 +226,7 @@ bool Continuation<System>::parameter_derivative(const Mode& mode, Scalar t0, con
 }
 
 template <class System>
-bool Continuation<System>::correct(const Mode& mode, Scalar t0, State& x, Scalar& p,
+bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
                                    const Vector& tau, const State& x_pred, Scalar p_pred,
                                    PeriodicOrbit<System>& orbit, int& iterations,
                                    std::string& why) {
@@ -217,13 +234,15 @@ bool Continuation<System>::correct(const Mode& mode, Scalar t0, State& x, Scalar
   const Vector y_pred = pack(x_pred, p_pred);
   x = x_pred;
   p = p_pred;
-  Vector r, gp, rhs(np + 1);
+  Vector r, gp, rhs(np + 1), dy(np + 1);
   Matrix J(np + 1, np + 1);
   for (iterations = 1; iterations <= opt_.max_corrector_iterations; ++iterations) {
     if (!detail::is_finite(p) || !(period_(p) > 0)) {
       why = "the period T(p) is not > 0 at p = " + detail::format_value(p);
       return false;
     }
+    set_(sys_, p);
+    mode = mode_at(mode, t0, x);
     const PeriodRun<System> run = shoot(mode, t0, x, p, true);
     if (!run.ok()) {
       why = "orbit run failed at p = " + detail::format_value(p) + ": " + run.message;
@@ -241,13 +260,12 @@ bool Continuation<System>::correct(const Mode& mode, Scalar t0, State& x, Scalar
     J.bottomRows(1) = tau.transpose();
     rhs.head(np) = -r;
     rhs[np] = -tau.dot(pack(x, p) - y_pred);
-    const Eigen::FullPivLU<Matrix> lu(J);
-    if (!lu.isInvertible()) {
+    if (!shooting_.newton_step(J, rhs, dy)) {
       why = "singular corrector matrix at p = " + detail::format_value(p) + " (residual " +
-            detail::format_value(res) + ")";
+            detail::format_value(res) + ", not in its range)";
       return false;
     }
-    const Vector y = pack(x, p) + lu.solve(rhs);
+    const Vector y = pack(x, p) + dy;
     unpack(y, x, p);
     why = "the corrector did not converge in " + std::to_string(opt_.max_corrector_iterations) +
           " iterations (residual " + detail::format_value(res) +
@@ -257,7 +275,7 @@ bool Continuation<System>::correct(const Mode& mode, Scalar t0, State& x, Scalar
 }
 
 template <class System>
-auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0)
+auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_guess, Scalar p0)
     -> Result {
   static const std::string where = "Continuation::run";
   detail::require_finite(where, "p0", p0);
@@ -270,6 +288,7 @@ auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_gues
   set_(sys_, p0);
   const Scalar T0 = period_(p0);
   detail::require_positive(where, "period(p0)", T0);
+  Mode mode = mode0;
   PeriodicOrbit<System> orbit = shooting_.forced(mode, t0, x0_guess, T0);
   if (!orbit.ok()) {
     result.status = ContinuationStatus::StartFailed;
@@ -281,21 +300,22 @@ auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_gues
   result.points.push_back({p, orbit, Scalar(0), false});
   if (on_point_) on_point_(result.points.back());
 
-  // Start tangent: dG/dx_P v = -dG/dp, tau = (v, 1) / |(v, 1)| towards options.direction.
-  Vector gp, tau(np + 1);
+  // Start tangent: dG/dx_P v = -dG/dp (the least v when M - I is singular: a family),
+  // tau = (v, 1) / |(v, 1)| towards options.direction.
+  Vector gp, v, tau(np + 1);
   std::string why;
   if (!parameter_derivative(mode, t0, x, p, gp, why)) {
     result.status = ContinuationStatus::StartFailed;
     result.message = "start tangent: " + why;
     return result;
   }
-  const Eigen::FullPivLU<Matrix> lu(orbit.monodromy - Matrix::Identity(np, np));
-  if (!lu.isInvertible()) {
+  if (!shooting_.newton_step(orbit.monodromy - Matrix::Identity(np, np), -gp, v)) {
     result.status = ContinuationStatus::StartFailed;
-    result.message = "start tangent: M - I is singular at p0 (a multiplier 1: start off a fold)";
+    result.message = "start tangent: M - I is singular at p0 and dG/dp is not in its range (a "
+                     "multiplier 1: start off a fold)";
     return result;
   }
-  tau.head(np) = lu.solve(-gp);
+  tau.head(np) = v;
   tau[np] = 1;
   tau *= Scalar(opt_.direction) / tau.norm();
 
@@ -307,7 +327,8 @@ auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_gues
     unpack(y_pred, x_pred, p_pred);
     int iterations = 0;
     PeriodicOrbit<System> next;
-    if (!correct(mode, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why)) {
+    Mode mode_new = mode;
+    if (!correct(mode_new, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why)) {
       ds /= Scalar(2);
       if (ds < opt_.min_step) {
         set_(sys_, p);
@@ -326,6 +347,7 @@ auto Continuation<System>::run(const Mode& mode, Scalar t0, const State& x0_gues
     tau = secant / secant.norm();
     x = x_new;
     p = p_new;
+    mode = mode_new;
     const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
     result.points.push_back({p, std::move(next), ds, changed});
     if (on_point_) on_point_(result.points.back());

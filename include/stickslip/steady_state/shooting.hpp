@@ -12,6 +12,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -155,10 +156,16 @@ class Shooting {
     return B;
   }
 
+  /// The Newton step: dy = J^-1 rhs when J is regular to the monodromy's accuracy (1 / |J^-1|_1,
+  /// estimated by the LU's rcond, above 1000 options.stepper.rtol); otherwise the minimum-norm
+  /// least-squares dy = J^+ rhs (complete orthogonal decomposition, pivots below 1000 rtol
+  /// dropped), the step across a family of orbits that moves the least. False when J is
+  /// singular and rhs is not in its range (|J dy - rhs| > |rhs| / 2, max norms). Used by
+  /// Continuation's corrector and start tangent too.
+  bool newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const;
+
  private:
   Orbit solve(const Mode& mode, Scalar t0, const State& x0, Scalar period, bool autonomous);
-  // The Newton step J dy = rhs; false when J is singular and rhs is not in its range.
-  bool newton_step(const Matrix& J, const Vector& rhs, Vector& dy) const;
 
   System& sys_;
   ShootingOptions<Scalar> opt_;

@@ -1,0 +1,508 @@
+#pragma once
+/// \file blade_frc.hpp
+/// \brief The blade's frequency-response curves (`blade_damper --frc f_lo:f_hi`): forced periodic
+/// orbits of the damped blade followed in the excitation frequency by pseudo-arclength
+/// continuation (stickslip::Continuation) at each preload, with stability, regime and tip
+/// amplitude per point, next to the two linear limits in closed form (all dampers stuck; no
+/// friction, mu = 0); and the optimal preload (`--optimise-preload`). docs/steady_state.md.
+
+#include "blade_regime.hpp"
+#include "blade_scene.hpp"
+#include "blade_sweep.hpp"
+
+#include <stickslip/detail/cpu_time.hpp>
+#include <stickslip/steady_state.hpp>
+#include <stickslip/stickslip.hpp>
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace blade {
+
+/// Mass and stiffness of the blade reduced on its retained modes with every damper stuck to the
+/// platform (M = I + sum m (b b^T [+ a a^T, inertial normal load]), K = Omega^2 + sum k b b^T;
+/// a, b the modal shapes of the contact point across and along the platform) or, `stuck` false,
+/// with frictionless dampers (mu = 0: M = I [+ sum m a a^T], K = Omega^2; the dampers' own
+/// oscillation x'' = -k x / m is not excited).
+inline void linear_matrices(BladeScene& scene, bool stuck, Eigen::MatrixXd& M, Eigen::MatrixXd& K) {
+  using stickslip::LoadDirection;
+  const auto& sys = *scene.system;
+  const Eigen::Index n = scene.basis.size();
+  M = Eigen::MatrixXd::Identity(n, n);
+  K = sys.omega_squared().asDiagonal();
+  for (const auto& d : sys.dampers()) {
+    const Eigen::VectorXd a = sys.point_shape(d.member, d.contact_coordinate, LoadDirection::Transverse);
+    const Eigen::VectorXd b = sys.point_shape(d.member, d.contact_coordinate, LoadDirection::Axial);
+    const double m = d.effective_mass();
+    if (sys.options().normal_load == stickslip::NormalLoad::Inertial) M += m * a * a.transpose();
+    if (!stuck) continue;
+    M += m * b * b.transpose();
+    K += d.effective_stiffness() * b * b.transpose();
+  }
+}
+
+/// A linear limit of the blade as the model has it: the exact linear part x_L' = A x_L + b(t)
+/// (FrictionDampedSystem::linear_part) of `system` in `mode` at rest, b(t) = bc cos(w t) +
+/// bs sin(w t) from the harmonic load (its shape does not depend on w).
+struct LinearLimit {
+  Eigen::MatrixXd A;
+  Eigen::VectorXcd forcing;  ///< bc - i bs: b(t) = Re(forcing e^{i w t})
+  Eigen::Index modes = 0;
+  /// |lambda| / 2 pi [Hz] of the oscillatory eigenvalues of A (Im lambda > 1e-6 |lambda|: not the
+  /// zero eigenvalues of the stuck family or of the frozen contact coordinates, which round-off
+  /// splits into tiny complex pairs: |lambda| > 1e-6 max |lambda| too), ascending: the
+  /// undamped natural frequencies of the limit's modes.
+  std::vector<double> natural_frequencies_hz() const {
+    const Eigen::VectorXcd ev = Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues();
+    const double scale = ev.cwiseAbs().maxCoeff();
+    std::vector<double> f;
+    for (Eigen::Index k = 0; k < ev.size(); ++k)
+      if (ev[k].imag() > 1e-6 * std::abs(ev[k]) && std::abs(ev[k]) > 1e-6 * scale)
+        f.push_back(std::abs(ev[k]) / (2 * M_PI));
+    std::sort(f.begin(), f.end());
+    return f;
+  }
+  /// Complex state amplitudes X = (i w I - A)^-1 (bc - i bs): the steady state x_L = Re(X e^{i w t}).
+  Eigen::VectorXcd response(double omega) const {
+    using cd = std::complex<double>;
+    Eigen::MatrixXcd D = -A.cast<cd>();
+    D.diagonal().array() += cd(0, omega);
+    return D.partialPivLu().solve(forcing);
+  }
+};
+
+/// The linear limit of `system` in `mode` (see LinearLimit).
+inline LinearLimit linear_limit(BladeScene::System& system, const BladeScene::System::Mode& mode) {
+  stickslip::LinearPart<double> lp;
+  if (!system.linear_part(mode, 0.0, system.initial_state(), lp) || lp.omega.size() != 1)
+    throw std::runtime_error("frc: the linear part at rest is not available");
+  LinearLimit l;
+  l.A = lp.A;
+  l.forcing = lp.bc.col(0).cast<std::complex<double>>() - std::complex<double>(0, 1) * lp.bs.col(0).cast<std::complex<double>>();
+  l.modes = system.num_modes();
+  return l;
+}
+
+/// The two linear limits of the scene: every damper stuck (the model's Stick mode, exact) and no
+/// friction (mu_s = mu_k = 0, the dampers slipping: friction force 0).
+inline std::array<LinearLimit, 2> blade_linear_limits(BladeScene& scene) {
+  using stickslip::ContactState;
+  BladeScene::System::Mode stuck(scene.system->num_dampers()), slip(scene.system->num_dampers());
+  for (Eigen::Index i = 0; i < stuck.size(); ++i) {
+    stuck[i] = ContactState::Stick;
+    slip[i] = ContactState::SlipPositive;
+  }
+  BladeParameters p = scene.parameters;
+  p.mu_s = p.mu_k = 0;
+  BladeScene::System frictionless = make_blade_system(scene, p);
+  return {linear_limit(*scene.system, stuck), linear_limit(frictionless, slip)};
+}
+
+/// Natural frequencies [rad/s] of a linear limit, ascending.
+inline std::vector<double> linear_frequencies(const Eigen::MatrixXd& M, const Eigen::MatrixXd& K) {
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+  std::vector<double> w;
+  for (Eigen::Index j = 0; j < es.eigenvalues().size(); ++j) w.push_back(std::sqrt(std::max(0.0, es.eigenvalues()[j])));
+  return w;
+}
+
+/// One point of a frequency-response curve (a converged orbit).
+struct FrcPoint {
+  double preload = 0;        ///< N0 [N]
+  double omega = 0;          ///< excitation [rad/s]
+  /// Half the tip's peak-to-peak over the orbit [m]: the amplitude comparable with the linear
+  /// curves (a damper stuck all period holds the member at an offset: the orbit's mean tip
+  /// deflection is not zero, max |tip| would add it).
+  double tip_amplitude = 0;
+  double tip_max_abs = 0;    ///< max |tip displacement| over the orbit [m]
+  bool stable = true;
+  std::string instability;   ///< "none", "fold", "period_doubling", "neimark_sacker"
+  double max_multiplier = 0; ///< largest |mu|
+  double stick_fraction[2] = {0, 0};       ///< per damper, over the period
+  double switches_per_period[2] = {0, 0};  ///< per damper: its contact-state changes in a period
+  std::string regime;        ///< the dampers' common regime (blade_regime.hpp), or "a / b"
+  int iterations = 0;        ///< corrector iterations (orbit runs) of the point
+  double residual = 0;       ///< |x_P(T) - x_P(0)| max norm
+  double cpu_seconds = 0;    ///< CPU time since the previous point (or the branch start)
+};
+
+/// A branch at one preload and how it ended.
+struct FrcBranch {
+  double preload = 0;
+  std::string status;   ///< stickslip::ContinuationStatus name, or "start_failed" with the message
+  std::string message;
+  std::string monodromy;  ///< the monodromy method the branch used
+  /// The linear limits at this preload (the damper mass m = 2 N0 / (r Omega^2) changes with it):
+  /// rows (f [Hz], all-stuck tip, frictionless tip), and their natural frequencies [Hz].
+  std::vector<std::array<double, 3>> linear;
+  std::vector<double> stuck_hz, free_hz;
+  double cpu_seconds = 0;
+  std::vector<FrcPoint> points;
+};
+
+/// Stick fraction and switches of damper i over one period of an orbit, from its start mode and
+/// events: the mode is constant between events (HybridStepper ends a step at each event).
+inline void damper_period_statistics(const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
+                                     Eigen::Index i, double& stick_fraction, double& switches) {
+  using stickslip::ContactState;
+  double t = orbit.t0, stuck = 0;
+  ContactState s = orbit.mode[i];
+  int count = 0;
+  for (const auto& e : orbit.events) {
+    if (s == ContactState::Stick) stuck += e.t - t;
+    t = e.t;
+    if (e.to[i] != s) ++count;
+    s = e.to[i];
+  }
+  if (s == ContactState::Stick) stuck += orbit.t0 + orbit.period - t;
+  stick_fraction = std::clamp(stuck / orbit.period, 0.0, 1.0);
+  switches = count;
+}
+
+/// Observer of the tip displacement's extremes (steps, samples, events).
+struct TipObserver : stickslip::NullObserver {
+  const BladeScene* scene = nullptr;
+  double lo = 0, hi = 0;
+  bool seen = false;
+  template <class X, class M>
+  bool on_step(double, const X& x, const M&) {
+    const double tip = scene->tip_displacement(x);
+    lo = seen ? std::min(lo, tip) : tip;
+    hi = seen ? std::max(hi, tip) : tip;
+    seen = true;
+    return true;
+  }
+  template <class X, class M>
+  bool on_sample(double t, const X& x, const M& m) { return on_step(t, x, m); }
+};
+
+/// The tip's extremes over one period of the orbit (a plain run of the converged orbit with
+/// samples every T / 512: a sampled sine is short of its peak by at most 1 - cos(pi / 512) =
+/// 2e-5 of the amplitude). Returns {min, max}.
+inline std::array<double, 2> orbit_tip_range(BladeScene& scene, const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
+                                             const stickslip::ShootingOptions<double>& opt) {
+  stickslip::StepperOptions<double> so = opt.stepper;
+  so.output_interval = orbit.period / 512;
+  stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(*scene.system, so);
+  TipObserver obs;
+  obs.scene = &scene;
+  obs.on_step(orbit.t0, orbit.x0, orbit.mode);
+  stepper.integrate(orbit.mode, orbit.t0, orbit.x0, orbit.t0 + orbit.period, obs);
+  return {obs.lo, obs.hi};
+}
+
+/// The start-mode rule of the continuation (stickslip::Continuation::start_mode): keep each
+/// damper's previous state unless a slipping damper's sliding velocity has changed sign (then it
+/// is a stick candidate); FrictionDampedSystem::make_consistent then resolves the candidates
+/// (a stuck damper beyond its capacity mu_s N slips).
+inline BladeScene::System::Mode blade_start_mode(BladeScene::System& sys, double t,
+                                                 const BladeScene::System::State& x,
+                                                 const BladeScene::System::Mode& previous) {
+  using stickslip::ContactState;
+  BladeScene::System::Mode m = previous;
+  BladeScene::System::State xc = x;
+  const auto V = sys.evaluate(m, t, xc).V;
+  for (Eigen::Index i = 0; i < m.size(); ++i) {
+    if ((m[i] == ContactState::SlipPositive && !(V[i] > 0)) || (m[i] == ContactState::SlipNegative && !(V[i] < 0)))
+      m[i] = ContactState::Stick;
+  }
+  if (!sys.make_consistent(m, t, xc)) return previous;
+  return m;
+}
+
+/// Settings of the frequency-response curves.
+struct FrcSettings {
+  double f_lo = 25, f_hi = 45;  ///< excitation range [Hz]
+  int max_points = 300;         ///< per branch
+  int linear_points = 400;      ///< points of each linear curve
+  int transient_periods = 60;   ///< before shooting the start orbit at f_lo
+  /// The monodromy by finite differences (2 n plain periods; on this scene ~3x cheaper than the
+  /// variational run, docs/steady_state.md "Cost").
+  bool finite_difference_monodromy = true;
+};
+
+/// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
+inline FrcSettings parse_frc_range(const std::string& text) {
+  FrcSettings s;
+  if (std::sscanf(text.c_str(), "%lf:%lf", &s.f_lo, &s.f_hi) != 2 || !(s.f_hi > s.f_lo) || !(s.f_lo > 0))
+    throw std::invalid_argument("--frc expects lo:hi [Hz] with 0 < lo < hi, got " + text);
+  return s;
+}
+
+/// The shooting options of the blade's orbits: q, q', x_d, x_d' periodic (the contact
+/// coordinates are a neutral direction and keep their values; docs/steady_state.md).
+inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScene::System& sys, bool fd) {
+  stickslip::ShootingOptions<double> opt;
+  opt.periodic = stickslip::ShootingOptions<double>::first(sys.contact_offset() >= 0 ? sys.contact_offset()
+                                                                                     : sys.linear_size());
+  if (fd) opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+  // The runs' global error over a period of ~8500 steps at rtol 1e-10 is ~1e-9 of the state:
+  // a residual of 1e-9 (the default) is at that floor and stalls the corrector; 1e-7 is far
+  // below what a design plot can show.
+  opt.tolerance = 1e-7;
+  return opt;
+}
+
+/// A start orbit of the scene at its parameters: the end of a transient from rest of `periods`
+/// (whole) excitation periods as the guess, then shooting from t0 = 0. Returns the orbit (check ok()).
+inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene& scene, int periods,
+                                                                      const stickslip::ShootingOptions<double>& opt) {
+  auto& sys = *scene.system;
+  const double T = 2 * M_PI / scene.parameters.force_omega;
+  BladeScene::System::State x0 = sys.initial_state();
+  BladeScene::System::Mode mode = sys.requested_mode();
+  if (!sys.make_consistent(mode, 0.0, x0)) throw std::runtime_error("frc: no consistent start state at rest");
+  stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(sys, opt.stepper);
+  const auto transient = stepper.integrate(mode, 0.0, x0, static_cast<double>(periods) * T);
+  stickslip::Shooting<BladeScene::System> shooting(sys, opt);
+  if (!transient.ok()) {
+    stickslip::PeriodicOrbit<BladeScene::System> failed;
+    failed.status = stickslip::ShootingStatus::IntegrationFailed;
+    failed.message = "the transient before shooting failed: " + transient.message;
+    return failed;
+  }
+  // The load F sin(omega t) repeats every T: the state after whole periods is the orbit's at
+  // t0 = 0, and t0 = 0 keeps the forcing phase at t0 fixed along a frequency branch (a later t0
+  // would turn it by t0 d omega).
+  return shooting.forced(transient.mode, 0.0, transient.x, T);
+}
+
+/// One frequency-response branch of `scene` at its preload over [f_lo, f_hi] (Hz), from the
+/// orbit at f_lo. The continuation parameter is omega / u with u = (omega_hi - omega_lo) / 4 S,
+/// S the largest |(q, q')| of the linear limits over the range, so that the parameter and the
+/// states weigh alike in the arclength norm. `progress` is called per point.
+inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double state_scale,
+                            const std::function<void(const FrcPoint&)>& progress) {
+  using System = BladeScene::System;
+  FrcBranch b;
+  b.preload = scene.parameters.preload;
+  const double cpu0 = stickslip::detail::thread_cpu_seconds();
+  double cpu_last = cpu0;
+  const double w_lo = 2 * M_PI * s.f_lo, w_hi = 2 * M_PI * s.f_hi;
+  // The parameter range weighs 4 state scales: away from resonance the orbit's states change
+  // little with the frequency, and a tangent dominated by x_P would crawl in frequency.
+  const double unit = (w_hi - w_lo) / (4 * state_scale);
+  BladeParameters p = scene.parameters;
+  p.force_omega = w_lo;
+  *scene.system = make_blade_system(scene, p);
+  scene.parameters = p;
+  // The finite-difference monodromy where the dampers slide; the variational one for a branch
+  // that starts stuck all period (a family: its multipliers 1 are exact there, the differences'
+  // noise ~rtol / fd_step hides them; docs/steady_state.md "The blade scene").
+  auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
+  auto start = blade_start_orbit(scene, s.transient_periods, opt);
+  if (opt.monodromy == stickslip::MonodromyMethod::FiniteDifference && (!start.ok() || start.events.empty())) {
+    opt.monodromy = stickslip::MonodromyMethod::Variational;
+    start = blade_start_orbit(scene, s.transient_periods, opt);
+  }
+  b.monodromy = stickslip::to_string(opt.monodromy);
+  if (!start.ok()) {
+    b.status = "start_failed";
+    b.message = "no orbit at f_lo: " + start.message;
+    b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
+    return b;
+  }
+  stickslip::ContinuationOptions<double> co;
+  co.parameter_min = w_lo / unit;
+  co.parameter_max = w_hi / unit;
+  co.max_step = state_scale / 25;
+  co.initial_step = state_scale / 200;
+  co.min_step = state_scale * 1e-6;
+  co.max_points = s.max_points;
+  // The finite-difference monodromy (accuracy ~rtol / fd_step) makes the corrector converge
+  // linearly: 4 iterations are a normal step here, not a hint to shrink it.
+  co.fast_iterations = 4;
+  co.max_corrector_iterations = 10;
+  stickslip::Continuation<System> cont(
+      *scene.system,
+      [&scene, unit](System& sys, double par) {
+        BladeParameters q = scene.parameters;
+        q.force_omega = par * unit;
+        sys = make_blade_system(scene, q);
+      },
+      [unit](double par) { return 2 * M_PI / (par * unit); }, opt, co);
+  cont.start_mode(blade_start_mode);
+  cont.on_point([&](const stickslip::ContinuationPoint<System>& pt) {
+    FrcPoint f;
+    f.preload = b.preload;
+    f.omega = pt.parameter * unit;
+    const auto range = orbit_tip_range(scene, pt.orbit, opt);
+    f.tip_amplitude = (range[1] - range[0]) / 2;
+    f.tip_max_abs = std::max(std::abs(range[0]), std::abs(range[1]));
+    f.stable = pt.orbit.floquet.stable;
+    f.instability = stickslip::to_string(pt.orbit.floquet.instability);
+    f.max_multiplier = pt.orbit.floquet.max_modulus;
+    std::optional<Regime> r[2];
+    for (Eigen::Index i = 0; i < 2; ++i) {
+      damper_period_statistics(pt.orbit, i, f.stick_fraction[i], f.switches_per_period[i]);
+      r[i] = damper_regime(f.stick_fraction[i]);
+    }
+    const auto common = common_regime(r[0], r[1]);
+    f.regime = common ? to_string(*common) : std::string(to_string(*r[0])) + " / " + to_string(*r[1]);
+    f.iterations = pt.orbit.iterations;
+    f.residual = pt.orbit.residual;
+    const double now = stickslip::detail::thread_cpu_seconds();
+    f.cpu_seconds = now - cpu_last;
+    cpu_last = now;
+    b.points.push_back(f);
+    if (progress) progress(f);
+  });
+  const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
+  b.status = stickslip::to_string(result.status);
+  b.message = result.message;
+  b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
+  return b;
+}
+
+/// The largest |x_P| amplitude (2-norm of the complex amplitudes of q, q', x_d, x_d') of the
+/// linear limits over the frequency range: the state scale of the arclength norm.
+inline double frc_state_scale(BladeScene& scene, const FrcSettings& s) {
+  double scale = 0;
+  const Eigen::Index np = 2 * scene.system->num_modes() + 2 * scene.system->num_dampers();
+  for (const LinearLimit& l : blade_linear_limits(scene))
+    for (int k = 0; k <= 200; ++k)
+      scale = std::max(scale, l.response(2 * M_PI * (s.f_lo + (s.f_hi - s.f_lo) * k / 200.0)).head(np).norm());
+  return scale;
+}
+
+/// The two linear curves (all stuck, mu = 0) on a uniform grid: rows (f [Hz], stuck tip, free
+/// tip), tip = |psi_tip^T X_q| of LinearLimit::response.
+inline std::vector<std::array<double, 3>> frc_linear_curves(BladeScene& scene, const FrcSettings& s) {
+  const auto limits = blade_linear_limits(scene);
+  const Eigen::VectorXcd tip = scene.tip_shape.cast<std::complex<double>>();
+  std::vector<std::array<double, 3>> rows;
+  for (int k = 0; k < s.linear_points; ++k) {
+    const double f = s.f_lo + (s.f_hi - s.f_lo) * k / (s.linear_points - 1.0);
+    std::array<double, 3> r{f, 0, 0};
+    for (std::size_t j = 0; j < 2; ++j)
+      r[j + 1] = std::abs(tip.dot(limits[j].response(2 * M_PI * f).head(limits[j].modes)));
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+/// `text` as the body of a JSON string (quotes, backslashes and control characters escaped).
+inline std::string json_escape(const std::string& text) {
+  std::string o;
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') o += '\\';
+    o += (static_cast<unsigned char>(ch) < 0x20) ? ' ' : ch;
+  }
+  return o;
+}
+
+/// Writes frc.csv (one row per point), frc_linear.csv and frc.json into `out`.
+inline void write_frc(const std::filesystem::path& out, const BladeParameters& p, const FrcSettings& s,
+                      const std::vector<FrcBranch>& branches) {
+  {
+    std::ofstream o(out / "frc.csv");
+    o << "preload_N,frequency_hz,tip_amplitude_m,tip_max_abs_m,stable,instability,max_multiplier,regime,stick_fraction_1,"
+         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s\n";
+    for (const auto& b : branches)
+      for (const auto& f : b.points)
+        o << fmt(f.preload) << ',' << fmt(f.omega / (2 * M_PI)) << ',' << fmt(f.tip_amplitude) << ',' << fmt(f.tip_max_abs) << ','
+          << (f.stable ? 1 : 0) << ',' << f.instability << ',' << fmt(f.max_multiplier) << ',' << f.regime << ','
+          << fmt(f.stick_fraction[0]) << ',' << fmt(f.stick_fraction[1]) << ',' << fmt(f.switches_per_period[0])
+          << ',' << fmt(f.switches_per_period[1]) << ',' << f.iterations << ',' << fmt(f.residual) << ','
+          << fmt(f.cpu_seconds) << '\n';
+  }
+  {
+    std::ofstream o(out / "frc_linear.csv");
+    o << "preload_N,frequency_hz,tip_all_stuck_m,tip_frictionless_m\n";
+    for (const auto& b : branches)
+      for (const auto& r : b.linear)
+        o << fmt(b.preload) << ',' << fmt(r[0]) << ',' << fmt(r[1]) << ',' << fmt(r[2]) << '\n';
+  }
+  std::ofstream j(out / "frc.json");
+  auto list = [&](const std::vector<double>& v) {
+    std::string t = "[";
+    for (std::size_t k = 0; k < v.size(); ++k) t += (k ? ", " : "") + jnum(v[k]);
+    return t + "]";
+  };
+  j << "{\n  \"f_lo_hz\": " << jnum(s.f_lo) << ", \"f_hi_hz\": " << jnum(s.f_hi)
+    << ", \"damping_ratio\": " << jnum(p.damping_ratio) << ", \"force_N\": " << jnum(p.force)
+    << ",\n  \"regime_rule\": \"" << regime_rule_text()
+    << " (here over one period of the orbit)\",\n  \"branches\": [";
+  for (std::size_t k = 0; k < branches.size(); ++k) {
+    const auto& b = branches[k];
+    const auto peak = std::max_element(b.points.begin(), b.points.end(),
+                                       [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
+    j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
+      << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
+      << ", \"cpu_s\": " << jnum(b.cpu_seconds)
+      << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
+    if (peak != b.points.end())
+      j << ", \"peak_tip_m\": " << jnum(peak->tip_amplitude) << ", \"peak_frequency_hz\": " << jnum(peak->omega / (2 * M_PI));
+    j << "}";
+  }
+  j << "\n  ]\n}\n";
+}
+
+/// `blade_damper --frc f_lo:f_hi`: a branch per preload (scene `p` at each of `preloads`), the
+/// linear curves, the files of write_frc and a summary line. Returns the exit code.
+inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const FrcSettings& s,
+                   const std::filesystem::path& out) {
+  if (!(p.damping_ratio > 0)) {
+    p.damping_ratio = 0.05;
+    std::printf("frc: steady states need damping (docs/steady_state.md): modal damping ratio 0.05 "
+                "(--damping to change)\n");
+  }
+  p.model.energy_audit = false;  // quadratures: not periodic, not needed here
+  std::printf("frc: %.1f..%.1f Hz, damping %.3g, preloads", s.f_lo, s.f_hi, p.damping_ratio);
+  for (double n0 : preloads) std::printf(" %g", n0);
+  std::printf(" N\n");
+  std::fflush(stdout);
+  std::vector<FrcBranch> branches;
+  for (double n0 : preloads) {
+    BladeParameters q = p;
+    q.preload = n0;
+    BladeScene sc = make_blade_scene(q);
+    const auto limits = blade_linear_limits(sc);
+    std::vector<double> stuck_hz = limits[0].natural_frequencies_hz(), free_hz = limits[1].natural_frequencies_hz();
+    std::vector<std::array<double, 3>> linear = frc_linear_curves(sc, s);
+    std::printf("frc N0 %g N: lowest mode %.2f Hz all stuck, %.2f Hz frictionless (the model's linear part)\n", n0,
+                stuck_hz.empty() ? 0.0 : stuck_hz[0], free_hz.empty() ? 0.0 : free_hz[0]);
+    int count = 0;
+    auto b = frc_branch(sc, s, frc_state_scale(sc, s), [&](const FrcPoint& f) {
+      std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s\n", n0,
+                  ++count, f.omega / (2 * M_PI), f.tip_amplitude,
+                  f.stable ? "stable" : f.instability.c_str(), f.regime.c_str(), f.stick_fraction[0],
+                  f.stick_fraction[1], f.iterations, f.cpu_seconds);
+      std::fflush(stdout);
+    });
+    std::printf("frc N0 %g N: %s, %zu points, %.1f s%s%s\n", n0, b.status.c_str(), b.points.size(), b.cpu_seconds,
+                b.message.empty() ? "" : ": ", b.message.c_str());
+    b.linear = std::move(linear);
+    b.stuck_hz = std::move(stuck_hz);
+    b.free_hz = std::move(free_hz);
+    branches.push_back(std::move(b));
+  }
+  write_frc(out, p, s, branches);
+  std::size_t points = 0;
+  double cpu = 0;
+  std::string peaks;
+  for (const auto& b : branches) {
+    points += b.points.size();
+    cpu += b.cpu_seconds;
+    const auto peak = std::max_element(b.points.begin(), b.points.end(),
+                                       [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
+    if (peak == b.points.end()) continue;
+    char t[128];
+    std::snprintf(t, sizeof t, "; N0 %g N: peak %.3e m at %.2f Hz", b.preload, peak->tip_amplitude, peak->omega / (2 * M_PI));
+    peaks += t;
+  }
+  std::printf("frc: %zu branches, %zu points, %.1f s CPU%s; files frc.csv, frc_linear.csv, frc.json in %s\n",
+              branches.size(), points, cpu, peaks.c_str(), out.string().c_str());
+  return 0;
+}
+
+}  // namespace blade
