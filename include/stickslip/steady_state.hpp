@@ -9,3 +9,17 @@
 #include "stickslip/steady_state/shooting.hpp"
 #include "stickslip/steady_state/shooting_options.hpp"
 #include "stickslip/steady_state/variational_system.hpp"
+
+#ifdef STICKSLIP_COMPILED
+// The compiled mode (docs/compiled.md): stickslip::compiled holds the steady-state solvers of
+// the default model (src/steady_state.cpp), so that a unit using them does not instantiate them.
+#include "stickslip/model/friction_damped_system.hpp"
+
+namespace stickslip {
+extern template PeriodRun<FrictionDampedSystem<double>> run_period<FrictionDampedSystem<double>>(
+    FrictionDampedSystem<double>&, const FrictionDampedSystem<double>::Mode&, double,
+    const FrictionDampedSystem<double>::State&, double, const ShootingOptions<double>&, bool);
+extern template class Shooting<FrictionDampedSystem<double>>;
+extern template class Continuation<FrictionDampedSystem<double>>;
+}  // namespace stickslip
+#endif

@@ -116,7 +116,14 @@ TEST_P(ExponentialRun, SameEventsTipHistoryAndClosedEnergyAuditAsDopriAtRtol1e12
   EXPECT_LT(res_ex, 1e-7) << "relative audit residual " << res_ex << " (DOPRI: " << res_ref << ")";
 }
 
+// Under the sanitizers (STICKSLIP_SANITIZED) the 2.0 N gross-slip run is left out (52 s there,
+// the longest test of that suite): 2.6 N still slides with moving contact points between its
+// stick phases, so the slipping path (frozen A_m, remainder, refreshes) stays under ASan + UBSan.
+#if defined(STICKSLIP_SANITIZED)
+INSTANTIATE_TEST_SUITE_P(Regimes, ExponentialRun, ::testing::Values(2.6, 26.0),
+#else
 INSTANTIATE_TEST_SUITE_P(Regimes, ExponentialRun, ::testing::Values(2.0, 2.6, 26.0),
+#endif
                          [](const ::testing::TestParamInfo<double>& i) {
                            return "N0_" + std::to_string(static_cast<int>(10 * i.param)) + "dN";
                          });
