@@ -120,10 +120,11 @@ TEST_P(ExponentialRun, SameEventsTipHistoryAndClosedEnergyAuditAsDopriAtRtol1e12
 // the longest test of that suite): 2.6 N still slides with moving contact points between its
 // stick phases, so the slipping path (frozen A_m, remainder, refreshes) stays under ASan + UBSan.
 #if defined(STICKSLIP_SANITIZED)
-INSTANTIATE_TEST_SUITE_P(Regimes, ExponentialRun, ::testing::Values(2.6, 26.0),
+constexpr double kRegimePreloads[] = {2.6, 26.0};
 #else
-INSTANTIATE_TEST_SUITE_P(Regimes, ExponentialRun, ::testing::Values(2.0, 2.6, 26.0),
+constexpr double kRegimePreloads[] = {2.0, 2.6, 26.0};
 #endif
+INSTANTIATE_TEST_SUITE_P(Regimes, ExponentialRun, ::testing::ValuesIn(kRegimePreloads),
                          [](const ::testing::TestParamInfo<double>& i) {
                            return "N0_" + std::to_string(static_cast<int>(10 * i.param)) + "dN";
                          });
