@@ -41,11 +41,15 @@ inline const char* contact_options_help() {
 template <class Next, class ModelOptions>
 bool parse_contact_option(const std::string& a, Next&& next, int& i, ContactOptions& contact,
                           ModelOptions& model) {
-  if (a == "--restitution") {
+  // A coefficient of restitution in [0, 1], read as the value of option `a`.
+  auto restitution = [&] {
     const std::string v = next(i);
     const double e = std::stod(v);
-    if (!(e >= 0.0 && e <= 1.0)) throw std::invalid_argument("--restitution expects e in [0, 1], got " + v);
-    contact.restitution = e;
+    if (!(e >= 0.0 && e <= 1.0)) throw std::invalid_argument(a + " expects e in [0, 1], got " + v);
+    return e;
+  };
+  if (a == "--restitution") {
+    contact.restitution = restitution();
     return true;
   }
   if (a == "--ends") {
@@ -57,10 +61,7 @@ bool parse_contact_option(const std::string& a, Next&& next, int& i, ContactOpti
     return true;
   }
   if (a == "--wall-restitution") {
-    const std::string v = next(i);
-    const double e = std::stod(v);
-    if (!(e >= 0.0 && e <= 1.0)) throw std::invalid_argument("--wall-restitution expects e in [0, 1], got " + v);
-    contact.wall_restitution = e;
+    contact.wall_restitution = restitution();
     return true;
   }
   return false;

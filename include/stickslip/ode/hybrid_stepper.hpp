@@ -543,7 +543,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     if (on_grid && !cut_back) {
       ++grid_k;
     } else {
-      grid_t0 = t;  // off the grid after a non-finite trial step: a new grid from here
+      grid_t0 = t;  // off the grid after a non-finite trial step or a cut-back: a new grid from here
       grid_k = 0;
     }
     if (guarded_) {
