@@ -69,4 +69,12 @@ function(stickslip_add_gtest name)
   endif()
   gtest_discover_tests(${name} PROPERTIES LABELS ${ARG_LABEL} TIMEOUT ${ARG_TIMEOUT}
                        DISCOVERY_TIMEOUT 60)
+  # The measured costs of the longest tests (tests/test_costs.cmake), read after every discovered
+  # test of this directory exists: appended once, at the end of the directory's CMakeLists.txt.
+  get_property(costs_added DIRECTORY PROPERTY STICKSLIP_TEST_COSTS_ADDED)
+  if(NOT costs_added)
+    set_property(DIRECTORY PROPERTY STICKSLIP_TEST_COSTS_ADDED ON)
+    cmake_language(DEFER CALL set_property DIRECTORY APPEND PROPERTY TEST_INCLUDE_FILES
+                   "${PROJECT_SOURCE_DIR}/tests/test_costs.cmake")
+  endif()
 endfunction()

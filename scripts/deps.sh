@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages stickslip needs, only those that are missing.
 # Usage: scripts/deps.sh [test|demo|bench|all]   (all is the default)
-# test: also Clang 14 (the sanitizer suite's compiler), pybind11, numpy and pytest (the Python
+# test: also Ninja (the suites' generator), Clang 14 (the sanitizer suite's compiler), pybind11, numpy and pytest (the Python
 # module and its tests, docs/python.md) and
 # Open MPI (the MPI sweep and its tests, docs/sweeps.md).
 # bench: also Boost (odeint, headers) and SUNDIALS (CVODE) for the peer benchmark (scripts/peers.sh).
@@ -9,7 +9,7 @@ set -euo pipefail
 what=${1:-all}
 pkgs=(cmake g++ make libeigen3-dev libspectra-dev googletest libgtest-dev libbenchmark-dev)
 case "$what" in
-  test) pkgs+=(clang-14 libclang-rt-14-dev python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
+  test) pkgs+=(ninja-build clang-14 libclang-rt-14-dev python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest libopenmpi-dev openmpi-bin) ;;
   demo) pkgs+=(python3-matplotlib) ;;
   all) pkgs+=(clang-14 libclang-rt-14-dev python3-matplotlib python3-dev pybind11-dev python3-pybind11 python3-numpy python3-pytest
               libopenmpi-dev openmpi-bin) ;;

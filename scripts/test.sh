@@ -16,7 +16,11 @@ jobs=$(nproc 2>/dev/null || echo 2)
 run_suite() {  # name, extra cmake args...
   local name=$1; shift
   echo "=== stickslip: ${name} build ==="
-  cmake -S . -B "build/${name}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_WARNINGS_AS_ERRORS=ON "$@"
+  # Ninja schedules the whole build graph at once (both cores busy to the last unit, no per-target
+  # make recursion); a build tree configured earlier keeps its generator.
+  local generator=()
+  if [ ! -f "build/${name}/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  cmake -S . -B "build/${name}" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_WARNINGS_AS_ERRORS=ON "$@"
   cmake --build "build/${name}" -j "${jobs}"
   (cd "build/${name}" && ctest --output-on-failure -j "${jobs}")
 }
