@@ -152,10 +152,7 @@ inline stickslip::TradeStudyOptions<BladeScene::System> compare_options(const Bl
   };
   o.energy_residual = [](System& sys, const stickslip::SimulationResult<System>& r) {
     if (!sys.options().energy_audit) return std::numeric_limits<double>::quiet_NaN();
-    const auto b = sys.energy_balance(r.mode, r.t, r.x, 0.0);
-    const double scale = std::max({std::abs(b.mechanical), std::abs(b.external_work), b.friction_dissipation,
-                                   b.viscous_dissipation});
-    return scale > 0 ? std::abs(b.residual) / scale : std::abs(b.residual);
+    return sys.energy_balance(r.mode, r.t, r.x, 0.0).relative_residual();
   };
   return o;
 }

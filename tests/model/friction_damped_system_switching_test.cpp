@@ -74,6 +74,26 @@ TEST(EnergyAudit, ResidualAtIntegrationErrorAndShrinksWithTolerance) {
   EXPECT_LT(a[1].residual * 30.0, a[0].residual);
 }
 
+// The relative closing error used by the trade study and the examples: |residual| over the largest
+// term in magnitude, the slope work counted by its magnitude (it may be negative).
+TEST(EnergyAudit, RelativeResidualIsOverTheLargestTermInMagnitude) {
+  System::EnergyBalance b{};
+  b.mechanical = 2;
+  b.external_work = 5;
+  b.viscous_dissipation = 1;
+  b.friction_dissipation = 3;
+  b.slope_work = -7;
+  b.impact_loss = 0.5;
+  b.residual = -0.07;
+  EXPECT_DOUBLE_EQ(b.relative_residual(), 0.01);
+  b.slope_work = 0;
+  EXPECT_DOUBLE_EQ(b.relative_residual(), 0.014);  // now W_ext = 5 is the largest
+  b.impact_loss = 35;
+  EXPECT_DOUBLE_EQ(b.relative_residual(), 0.002);
+  const System::EnergyBalance zero{};
+  EXPECT_EQ(zero.relative_residual(), 0.0);  // no terms at all: the residual itself
+}
+
 // ---- 4. Coulomb conditions at samples and switches -----------------------------------------------
 
 TEST(CoulombConditions, HoldAtEverySampleAndEverySwitch) {

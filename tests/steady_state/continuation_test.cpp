@@ -48,7 +48,9 @@ TEST(SteadyStateContinuation, LinearTwoDofFrequencyResponseIsTheReceptance) {
   A.topRightCorner<2, 2>().setIdentity();
   A.bottomLeftCorner<2, 2>() = -sys.K;
   A.bottomRightCorner<2, 2>() = -sys.C;
-  const Eigen::Vector4cd lambda = Eigen::EigenSolver<Eigen::Matrix4d>(A).eigenvalues();
+  // The dynamic-size solver that floquet_multipliers instantiates anyway (a fixed 4 x 4 one cost
+  // this unit ~8 s of compilation).
+  const Eigen::Vector4cd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(A)).eigenvalues();
 
   auto cont = frequency_continuation(sys, 0.5, 2.2, 1.0);
   const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.5);

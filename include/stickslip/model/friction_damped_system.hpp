@@ -223,6 +223,15 @@ class FrictionDampedSystem {
     /// D_imp: kinetic energy lost in the impacts of separated dampers (0 without Separate dampers).
     Scalar impact_loss = Scalar(0);
     Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope - D_imp)
+    /// |residual| / max(|E|, |W_ext|, D_visc, D_fric, |W_slope|, D_imp): the closing error relative
+    /// to the audit's largest term (|residual| when every term is 0). Meant for a run that starts
+    /// from rest (E0 = 0); with E0 != 0 compare against |E0| too.
+    Scalar relative_residual() const {
+      using std::abs;
+      const Scalar scale = std::max({abs(mechanical), abs(external_work), viscous_dissipation,
+                                     friction_dissipation, abs(slope_work), impact_loss});
+      return scale > Scalar(0) ? abs(residual) / scale : abs(residual);
+    }
   };
 
   /// Builds the system; throws std::invalid_argument on a bad damper, load or option.
