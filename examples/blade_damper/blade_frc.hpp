@@ -149,23 +149,13 @@ struct FrcBranch {
   std::vector<FrcPoint> points;
 };
 
-/// Stick fraction and switches of damper i over one period of an orbit, from its start mode and
-/// events: the mode is constant between events (HybridStepper ends a step at each event).
+/// Stick fraction and switches of damper i over one period of an orbit
+/// (stickslip::orbit_contact_statistics).
 inline void damper_period_statistics(const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
                                      Eigen::Index i, double& stick_fraction, double& switches) {
-  using stickslip::ContactState;
-  double t = orbit.t0, stuck = 0;
-  ContactState s = orbit.mode[i];
-  int count = 0;
-  for (const auto& e : orbit.events) {
-    if (s == ContactState::Stick) stuck += e.t - t;
-    t = e.t;
-    if (e.to[i] != s) ++count;
-    s = e.to[i];
-  }
-  if (s == ContactState::Stick) stuck += orbit.t0 + orbit.period - t;
-  stick_fraction = std::clamp(stuck / orbit.period, 0.0, 1.0);
-  switches = count;
+  const auto s = stickslip::orbit_contact_statistics(orbit, i);
+  stick_fraction = s.stick_fraction;
+  switches = s.switches;
 }
 
 /// Observer of the tip displacement's extremes (steps, samples, events).

@@ -4,6 +4,7 @@
 // (blade_regime.hpp) with full records, and prints a summary. `blade_damper --help` for options.
 #include "blade_compare.hpp"
 #include "blade_frc.hpp"
+#include "blade_optimal.hpp"
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
 #include "blade_scene.hpp"
@@ -52,6 +53,7 @@ struct Cli {
   int compare_repeats = 3;
   double compare_reference_rtol = 1e-10;
   std::optional<blade::FrcSettings> frc;  // --frc: frequency-response curves (blade_frc.hpp)
+  std::optional<blade::OptimalSettings> optimal;  // --optimise-preload (blade_optimal.hpp)
 };
 
 const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
@@ -97,6 +99,10 @@ Usage: blade_damper [options]
   --frc-points n         (after --frc) points per branch at most (default 300)
   --frc-variational      (after --frc) the variational monodromy throughout (default: finite
                          differences, variational for a branch that starts stuck all period)
+  --optimise-preload lo:hi  the preload in lo..hi N minimising the resonant tip amplitude
+                         (max over frequency of the periodic orbit's): log grid + golden
+                         sections (OUT/optimal.csv, optimal_peaks.csv, optimal.json;
+                         docs/steady_state.md); modal damping 0.05 unless --damping
   --threads n            worker threads of the sweep (default: all cores)
   --out DIR              output folder (default out)
   --help                 this text
@@ -175,6 +181,8 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;
+    } else if (a == "--optimise-preload") {
+      c.optimal = blade::parse_optimal_range(need(i));
     } else if (a == "--threads") {
       c.threads = std::stoi(need(i));
     } else if (a == "--out") {
@@ -464,6 +472,7 @@ int main(int argc, char** argv) {
     const fs::path out(c.out);
     if (!c.compare.empty()) return run_compare(c, out);
     if (c.frc) return blade::run_frc(c.params, c.preloads, *c.frc, out);
+    if (c.optimal) return blade::run_optimal_preload(c.params, *c.optimal, out);
     std::printf("blade_damper: paper section 3 parameters, %d modes, %d + %d elements, integrator %s "
                 "(rtol %.0e), duration %.1f s, output in %s/\n",
                 c.params.modes, c.params.blade_elements, c.params.platform_elements,

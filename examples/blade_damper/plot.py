@@ -5,7 +5,8 @@ Usage: /usr/bin/python3 examples/blade_damper/plot.py OUT_DIR
 Reads history_N0_*.csv, spectra_N0_*.csv, tip_N0_*.csv, sweep.csv and sweep.json written by
 blade_damper, and the same records of each regime's representative run in OUT_DIR/regime_*/;
 with compare.csv (blade_damper --compare) also the work-precision figure compare.png; with frc.csv
-(blade_damper --frc) the frequency-response curves frc.png.
+(blade_damper --frc) the frequency-response curves frc.png; with optimal_peaks.csv
+(blade_damper --optimise-preload) optimal.png.
 Regime names come from sweep.json (the example's one rule, blade_regime.hpp), not from here.
 """
 import csv
@@ -18,6 +19,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plot_optimal import plot_optimal  # noqa: E402  (blade_damper --optimise-preload)
 
 
 def read_csv(path):
@@ -258,6 +262,7 @@ def main():
     made += plot_sweep(out, info)
     made += plot_compare(out)
     made += plot_frc(out)
+    made += plot_optimal(out)
     print(f"plot.py: wrote {len(made)} PNG figures in {out}/ and its regime_*/ folders")
 
 

@@ -3,6 +3,7 @@
 /// \brief Umbrella header of the steady-state component: periodic orbits by shooting, monodromy
 /// with saltation matrices, Floquet multipliers and pseudo-arclength continuation.
 
+#include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
 #include "stickslip/steady_state/period_run.hpp"

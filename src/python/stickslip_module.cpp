@@ -692,6 +692,107 @@ struct PyOrbit {
   Instability instability = Instability::None;
   Eigen::VectorXd amplitudes;
   std::vector<Transition> events;
+  std::vector<double> stick_fractions;  // per damper (orbit_contact_statistics)
+  std::vector<int> switches;            // per damper
+};
+
+/// The C++ orbit as PyOrbit (no Python objects: callable with the GIL released).
+PyOrbit to_py(const PeriodicOrbit<System>& orbit) {
+  PyOrbit out;
+  out.status = orbit.status;
+  out.message = orbit.message;
+  out.t0 = orbit.t0;
+  out.period = orbit.period;
+  out.residual = orbit.residual;
+  out.iterations = orbit.iterations;
+  out.x0 = orbit.x0;
+  out.mode = to_list(orbit.mode);
+  out.monodromy = orbit.monodromy;
+  out.multipliers = orbit.floquet.multipliers;
+  out.max_modulus = orbit.floquet.max_modulus;
+  out.stable = orbit.floquet.stable;
+  out.instability = orbit.floquet.instability;
+  out.amplitudes = orbit.amplitudes;
+  for (const auto& e : orbit.events) out.events.push_back(Transition{e.t, to_list(e.from), to_list(e.to)});
+  for (Index i = 0; i < orbit.mode.size(); ++i) {
+    const auto c = orbit_contact_statistics(orbit, i);
+    out.stick_fractions.push_back(c.stick_fraction);
+    out.switches.push_back(c.switches);
+  }
+  return out;
+}
+
+/// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
+/// x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a neutral direction) nor the energy
+/// quadratures (docs/steady_state.md).
+ShootingOptions<double> shooting_options(const System& system, const std::optional<std::vector<Index>>& periodic,
+                                         const std::string& monodromy, double tolerance, int max_iterations,
+                                         double rtol, double atol, const std::string& where) {
+  ShootingOptions<double> opt;
+  opt.stepper.rtol = rtol;
+  opt.stepper.atol = atol;
+  opt.tolerance = tolerance;
+  opt.max_iterations = max_iterations;
+  if (monodromy == "finite_difference") opt.monodromy = MonodromyMethod::FiniteDifference;
+  else if (monodromy != "variational")
+    throw std::invalid_argument(where + ": monodromy must be 'variational' or 'finite_difference', got '" + monodromy +
+                                "'");
+  opt.periodic = periodic ? *periodic : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+  return opt;
+}
+
+/// One point of continue_orbits' branch.
+struct PyContinuationPoint {
+  double parameter = 0, step = 0;
+  bool stability_changed = false;
+  PyOrbit orbit;
+};
+
+/// What continue_orbits returns.
+struct PyContinuation {
+  ContinuationStatus status = ContinuationStatus::Completed;
+  std::string message;
+  std::vector<PyContinuationPoint> points;
+};
+
+/// The Python callables of continue_orbits as Continuation's std::functions. They hold no
+/// Python reference (the callables outlive the run: they are continue_orbits' arguments) and
+/// re-acquire the GIL, which the run releases; a Python exception propagates as
+/// py::error_already_set through Continuation::run (which catches nothing) to the caller.
+struct ContinuationCallbacks {
+  const py::object* parameter = nullptr;   // parameter(system, p) -> the system at p
+  const py::object* period = nullptr;      // a float or period(p)
+  const py::object* start_mode = nullptr;  // None or start_mode(system, t, x, mode) -> mode
+  const py::object* on_point = nullptr;    // None or on_point(point)
+
+  void set(System& system, double p) const {
+    py::gil_scoped_acquire gil;
+    const py::object r = (*parameter)(py::cast(&system, py::return_value_policy::reference), p);
+    if (!py::isinstance<System>(r))
+      throw py::type_error("continue_orbits: parameter(system, p) must return the FrictionDampedSystem at p, got " +
+                           std::string(py::str(py::type::of(r).attr("__name__"))));
+    const System& next = r.cast<const System&>();
+    if (&next == &system) return;
+    if (next.state_size() != system.state_size() || next.num_dampers() != system.num_dampers())
+      throw std::invalid_argument("continue_orbits: parameter(system, p) returned a system of another state size (" +
+                                  std::to_string(next.state_size()) + " instead of " +
+                                  std::to_string(system.state_size()) + ")");
+    system = next;
+  }
+  double period_of(double p) const {
+    if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked > 0 by Continuation
+    py::gil_scoped_acquire gil;
+    return (*period)(p).cast<double>();
+  }
+  Mode mode_of(System& system, double t, const State& x, const Mode& previous) const {
+    py::gil_scoped_acquire gil;
+    const py::object r = (*start_mode)(py::cast(&system, py::return_value_policy::reference), t, x, to_list(previous));
+    return to_mode(r.cast<std::vector<ContactState>>());
+  }
+  void point(const ContinuationPoint<System>& pt) const {
+    py::gil_scoped_acquire gil;
+    (*on_point)(PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)});
+  }
 };
 
 void bind_steady_state(py::module_& m) {
@@ -722,49 +823,21 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("stable", &PyOrbit::stable)
       .def_readonly("instability", &PyOrbit::instability)
       .def_readonly("amplitudes", &PyOrbit::amplitudes, "max |x_i| over the orbit (the periodic components)")
-      .def_readonly("events", &PyOrbit::events, "the contact switches of one period");
+      .def_readonly("events", &PyOrbit::events, "the contact switches of one period")
+      .def_readonly("stick_fractions", &PyOrbit::stick_fractions, "per damper: time stuck / T")
+      .def_readonly("switches", &PyOrbit::switches, "per damper: its contact-state changes in one period");
   m.def(
       "find_periodic_orbit",
       [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol) {
-        ShootingOptions<double> opt;
-        opt.stepper.rtol = rtol;
-        opt.stepper.atol = atol;
-        opt.tolerance = tolerance;
-        opt.max_iterations = max_iterations;
-        if (monodromy == "finite_difference") opt.monodromy = MonodromyMethod::FiniteDifference;
-        else if (monodromy != "variational")
-          throw std::invalid_argument("find_periodic_orbit: monodromy must be 'variational' or 'finite_difference', got '" +
-                                      monodromy + "'");
-        // Default periodic set: q, q', x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a
-        // neutral direction) nor the energy quadratures (docs/steady_state.md).
-        opt.periodic = periodic ? *periodic
-                                : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+        const ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
+                                                             atol, "find_periodic_orbit");
         State x = x0 ? *x0 : system.initial_state();
         Mode md = mode ? to_mode(*mode) : system.requested_mode();
-        PyOrbit out;
-        {
-          py::gil_scoped_release release;
-          Shooting<System> shooting(system, opt);
-          const auto orbit = shooting.forced(md, t0, x, period);
-          out.status = orbit.status;
-          out.message = orbit.message;
-          out.t0 = orbit.t0;
-          out.period = orbit.period;
-          out.residual = orbit.residual;
-          out.iterations = orbit.iterations;
-          out.x0 = orbit.x0;
-          out.mode = to_list(orbit.mode);
-          out.monodromy = orbit.monodromy;
-          out.multipliers = orbit.floquet.multipliers;
-          out.max_modulus = orbit.floquet.max_modulus;
-          out.stable = orbit.floquet.stable;
-          out.instability = orbit.floquet.instability;
-          out.amplitudes = orbit.amplitudes;
-          for (const auto& e : orbit.events) out.events.push_back(Transition{e.t, to_list(e.from), to_list(e.to)});
-        }
-        return out;
+        py::gil_scoped_release release;
+        Shooting<System> shooting(system, opt);
+        return to_py(shooting.forced(md, t0, x, period));
       },
       py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
       py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
@@ -772,6 +845,96 @@ void bind_steady_state(py::module_& m) {
       "Forced periodic orbit of the given period by shooting from (mode, t0, x0) (default: the system's initial "
       "state), with its monodromy and Floquet multipliers (Shooting::forced, docs/steady_state.md). periodic: the "
       "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D).");
+
+  py::enum_<ContinuationStatus>(m, "ContinuationStatus")
+      .value("Completed", ContinuationStatus::Completed)
+      .value("MaxPoints", ContinuationStatus::MaxPoints)
+      .value("StepTooSmall", ContinuationStatus::StepTooSmall)
+      .value("StartFailed", ContinuationStatus::StartFailed);
+  py::class_<PyContinuationPoint>(m, "ContinuationPoint", "One point of a branch (docs/steady_state.md).")
+      .def_readonly("parameter", &PyContinuationPoint::parameter, "the parameter p")
+      .def_readonly("step", &PyContinuationPoint::step, "the arclength step that reached it (0 at the start)")
+      .def_readonly("stability_changed", &PyContinuationPoint::stability_changed,
+                    "the orbit's stability differs from the previous point's")
+      .def_readonly("orbit", &PyContinuationPoint::orbit, "the PeriodicOrbit at p");
+  py::class_<PyContinuation>(m, "Branch", "A branch computed by continue_orbits.")
+      .def_readonly("status", &PyContinuation::status)
+      .def_readonly("message", &PyContinuation::message, "why it ended early (empty when Completed)")
+      .def_readonly("points", &PyContinuation::points)
+      .def_property_readonly("completed",
+                             [](const PyContinuation& c) { return c.status == ContinuationStatus::Completed; })
+      .def_property_readonly(
+          "parameters",
+          [](const PyContinuation& c) {
+            std::vector<double> p;
+            for (const auto& pt : c.points) p.push_back(pt.parameter);
+            return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(p.data(), static_cast<Index>(p.size())));
+          },
+          "the points' parameters (numpy)");
+  m.def(
+      "continue_orbits",
+      [](System& system, const py::object& parameter, double p0, double p_end, const py::object& period, double t0,
+         std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
+         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
+         double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
+         int max_corrector_iterations, int fast_iterations, double growth, const py::object& start_mode,
+         const py::object& on_point) {
+        static const std::string where = "continue_orbits";
+        if (!PyCallable_Check(parameter.ptr()))
+          throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
+        if (!PyCallable_Check(period.ptr())) {
+          const double T = period.cast<double>();
+          detail::require_positive(where, "period", T);
+        }
+        if (!start_mode.is_none() && !PyCallable_Check(start_mode.ptr()))
+          throw std::invalid_argument(where + ": start_mode must be None or a callable start_mode(system, t, x, mode)");
+        if (!on_point.is_none() && !PyCallable_Check(on_point.ptr()))
+          throw std::invalid_argument(where + ": on_point must be None or a callable on_point(point)");
+        if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
+        const ShootingOptions<double> opt =
+            shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, where);
+        ContinuationOptions<double> co;
+        co.parameter_min = std::min(p0, p_end);
+        co.parameter_max = std::max(p0, p_end);
+        co.direction = p_end > p0 ? 1 : -1;
+        co.initial_step = initial_step;
+        co.min_step = min_step;
+        co.max_step = max_step;
+        co.max_points = max_points;
+        co.max_corrector_iterations = max_corrector_iterations;
+        co.fast_iterations = fast_iterations;
+        co.growth = growth;
+        const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point};
+        State x = x0 ? *x0 : system.initial_state();
+        Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        PyContinuation out;
+        py::gil_scoped_release release;
+        Continuation<System> cont(
+            system, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
+            co);
+        if (!start_mode.is_none())
+          cont.start_mode([&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
+        if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<System>& pt) { cb.point(pt); });
+        const auto result = cont.run(md, t0, x, p0);
+        out.status = result.status;
+        out.message = result.message;
+        for (const auto& pt : result.points)
+          out.points.push_back(PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)});
+        return out;
+      },
+      py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,
+      py::arg("x0") = py::none(), py::arg("mode") = py::none(), py::arg("periodic") = py::none(),
+      py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
+      py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12, py::arg("initial_step") = 0.01, py::arg("min_step") = 1e-6,
+      py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
+      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("start_mode") = py::none(),
+      py::arg("on_point") = py::none(),
+      "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
+      "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
+      "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
+      "orbit is shot from (mode, t0, x0) (default: the system's initial state). The arclength norm is Euclidean in "
+      "(x_P, p): scale p so that both are of order one. A Python exception raised by a callable ends the run and "
+      "propagates. The GIL is released during the run and re-acquired for each callable.");
 }
 
 }  // namespace

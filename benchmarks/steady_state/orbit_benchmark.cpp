@@ -1,0 +1,176 @@
+// Cost of the blade's periodic orbits (issue #21's targets: one orbit <= 50 ms, a 200-point
+// frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
+// state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
+// this thread:
+//   orbit_benchmark [--preloads a,b] [--frc-points n] [--out file.json]
+// Per preload (5 % modal damping, 200 rad/s, energy audit off, the example's shooting options):
+// one plain period and one variational period (steps, RHS evaluations); shooting from rest and
+// from transients of 10 and 60 periods, with the finite-difference and the variational
+// monodromy; the transient from rest until x(kT) equals the shot orbit's x0 to the shooting
+// tolerance (periods and CPU); and, with --frc-points n > 0, a frequency branch of n points
+// from 190 rad/s (its CPU per point, extrapolated to 200 points).
+#include "blade_damper/blade_frc.hpp"
+
+#include <stickslip/detail/cpu_time.hpp>
+#include <stickslip/steady_state.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using System = blade::BladeScene::System;
+using stickslip::detail::thread_cpu_seconds;
+
+struct Timed {
+  double cpu = 0;
+  int runs = 0;
+  bool ok = false;
+  std::string note;
+};
+
+std::string json_timed(const Timed& t) {
+  std::ostringstream o;
+  o << "{\"cpu_s\": " << blade::jnum(t.cpu) << ", \"runs\": " << t.runs << ", \"ok\": " << (t.ok ? "true" : "false")
+    << ", \"note\": \"" << blade::json_escape(t.note) << "\"}";
+  return o.str();
+}
+
+// Shooting from a transient of `periods` periods (0: from rest made consistent); the CPU time
+// of the shooting alone and of transient + shooting.
+Timed shoot_after(blade::BladeScene& scene, int periods, bool fd, Timed& with_transient,
+                  stickslip::PeriodicOrbit<System>* keep = nullptr) {
+  auto opt = blade::blade_shooting_options(*scene.system, fd);
+  const double c0 = thread_cpu_seconds();
+  auto& sys = *scene.system;
+  const double T = 2 * M_PI / scene.parameters.force_omega;
+  System::State x = sys.initial_state();
+  System::Mode mode = sys.requested_mode();
+  sys.make_consistent(mode, 0.0, x);
+  if (periods > 0) {
+    stickslip::HybridStepper<System, stickslip::DormandPrince54> stepper(sys, opt.stepper);
+    const auto tr = stepper.integrate(mode, 0.0, x, periods * T);
+    x = tr.x;
+    mode = tr.mode;
+  }
+  const double c1 = thread_cpu_seconds();
+  stickslip::Shooting<System> shooting(sys, opt);
+  const auto orbit = shooting.forced(mode, 0.0, x, T);
+  const double c2 = thread_cpu_seconds();
+  Timed t{c2 - c1, orbit.iterations, orbit.ok(), orbit.message};
+  with_transient = Timed{c2 - c0, orbit.iterations, orbit.ok(), orbit.message};
+  if (keep) *keep = orbit;
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<double> preloads{1.0, 26.0};
+  int frc_points = 0;
+  std::string out = "orbit_benchmark.json";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--preloads" && i + 1 < argc) {
+      preloads.clear();
+      std::stringstream ss(argv[++i]);
+      for (std::string v; std::getline(ss, v, ',');) preloads.push_back(std::stod(v));
+    } else if (a == "--frc-points" && i + 1 < argc) {
+      frc_points = std::stoi(argv[++i]);
+    } else if (a == "--out" && i + 1 < argc) {
+      out = argv[++i];
+    } else {
+      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--out file.json]\n");
+      return 2;
+    }
+  }
+  std::ofstream j(out);
+  j << "{\n  \"scene\": \"blade, 5 % modal damping, 200 rad/s, rtol 1e-10, Newton tolerance 1e-7\",\n  \"preloads\": [";
+  for (std::size_t k = 0; k < preloads.size(); ++k) {
+    blade::BladeParameters p;
+    p.preload = preloads[k];
+    p.damping_ratio = 0.05;
+    p.model.energy_audit = false;
+    blade::BladeScene scene = blade::make_blade_scene(p);
+    auto& sys = *scene.system;
+    const double T = 2 * M_PI / p.force_omega;
+    std::printf("N0 %g N\n", p.preload);
+    // The orbit (the reference for the transient) from the 60-period start, variational.
+    stickslip::PeriodicOrbit<System> orbit;
+    Timed v60t, v10t, v0t, f60t, f10t;
+    const Timed v60 = shoot_after(scene, 60, false, v60t, &orbit);
+    const Timed f60 = shoot_after(scene, 60, true, f60t);
+    const Timed v10 = shoot_after(scene, 10, false, v10t);
+    const Timed f10 = shoot_after(scene, 10, true, f10t);
+    const Timed v0 = shoot_after(scene, 0, false, v0t);
+    std::printf("  shooting after 60 / 10 / 0 periods: variational %.3f / %.3f / %.3f s, finite differences %.3f / %.3f s\n",
+                v60.cpu, v10.cpu, v0.cpu, f60.cpu, f10.cpu);
+    // One plain and one variational period of the orbit.
+    auto opt = blade::blade_shooting_options(sys, false);
+    double c0 = thread_cpu_seconds();
+    const auto plain = stickslip::run_period(sys, orbit.mode, 0.0, orbit.x0, T, opt, false);
+    const double plain_cpu = thread_cpu_seconds() - c0;
+    c0 = thread_cpu_seconds();
+    const auto var = stickslip::run_period(sys, orbit.mode, 0.0, orbit.x0, T, opt, true);
+    const double var_cpu = thread_cpu_seconds() - c0;
+    std::printf("  one period: plain %.4f s (%ld steps, %ld RHS), variational %.4f s (%ld steps, %ld RHS)\n", plain_cpu,
+                plain.stats.accepted_steps, plain.stats.rhs_evaluations, var_cpu, var.stats.accepted_steps,
+                var.stats.rhs_evaluations);
+    // The transient from rest until x(kT) is the orbit's x0 to the shooting tolerance.
+    System::State x = sys.initial_state();
+    System::Mode mode = sys.requested_mode();
+    sys.make_consistent(mode, 0.0, x);
+    stickslip::HybridStepper<System, stickslip::DormandPrince54> stepper(sys, opt.stepper);
+    const double scale = std::max(1.0, orbit.x0.head(static_cast<Eigen::Index>(opt.periodic.size())).cwiseAbs().maxCoeff());
+    int periods = 0;
+    double diff = INFINITY;
+    c0 = thread_cpu_seconds();
+    while (orbit.ok() && periods < 5000) {
+      const auto r = stepper.integrate(mode, periods * T, x, (periods + 1) * T);
+      if (!r.ok()) break;
+      x = r.x;
+      mode = r.mode;
+      ++periods;
+      diff = 0;
+      for (Eigen::Index i : opt.periodic) diff = std::max(diff, std::abs(x[i] - orbit.x0[i]));
+      if (diff <= opt.tolerance * scale) break;
+    }
+    const double transient_cpu = thread_cpu_seconds() - c0;
+    std::printf("  transient to the orbit (|x(kT) - x0| <= %.0e): %d periods, %.3f s; ratio to shooting after 60 "
+                "periods (with the transient): %.2f\n",
+                opt.tolerance * scale, periods, transient_cpu, transient_cpu / v60t.cpu);
+    j << (k ? "," : "") << "\n    {\"preload_N\": " << blade::jnum(p.preload) << ", \"orbit_ok\": " << (orbit.ok() ? "true" : "false")
+      << ", \"events_per_period\": " << orbit.events.size() << ",\n     \"shooting_variational\": {\"after_60\": "
+      << json_timed(v60) << ", \"after_60_with_transient\": " << json_timed(v60t) << ", \"after_10\": " << json_timed(v10)
+      << ", \"after_10_with_transient\": " << json_timed(v10t) << ", \"from_rest\": " << json_timed(v0) << "},\n"
+      << "     \"shooting_finite_difference\": {\"after_60\": " << json_timed(f60) << ", \"after_60_with_transient\": "
+      << json_timed(f60t) << ", \"after_10\": " << json_timed(f10) << ", \"after_10_with_transient\": " << json_timed(f10t)
+      << "},\n     \"plain_period\": {\"cpu_s\": " << blade::jnum(plain_cpu) << ", \"steps\": " << plain.stats.accepted_steps
+      << ", \"rhs\": " << plain.stats.rhs_evaluations << "}, \"variational_period\": {\"cpu_s\": " << blade::jnum(var_cpu)
+      << ", \"steps\": " << var.stats.accepted_steps << ", \"rhs\": " << var.stats.rhs_evaluations
+      << "},\n     \"transient_to_orbit\": {\"periods\": " << periods << ", \"cpu_s\": " << blade::jnum(transient_cpu)
+      << ", \"final_difference\": " << blade::jnum(diff) << ", \"ratio_to_shooting_after_60_with_transient\": "
+      << blade::jnum(transient_cpu / v60t.cpu) << "}";
+    if (frc_points > 0) {
+      blade::FrcSettings s;
+      s.f_lo = 190 / (2 * M_PI);
+      s.f_hi = 260 / (2 * M_PI);
+      s.max_points = frc_points;
+      const auto b = blade::frc_branch(scene, s, blade::frc_state_scale(scene, s), {});
+      const double per_point = b.points.empty() ? NAN : b.cpu_seconds / static_cast<double>(b.points.size());
+      std::printf("  frequency branch: %zu points, %.2f s (%.3f s per point; 200 points ~%.0f s)\n", b.points.size(),
+                  b.cpu_seconds, per_point, 200 * per_point);
+      j << ",\n     \"frc\": {\"points\": " << b.points.size() << ", \"cpu_s\": " << blade::jnum(b.cpu_seconds)
+        << ", \"cpu_per_point_s\": " << blade::jnum(per_point) << ", \"status\": \"" << b.status << "\"}";
+    }
+    j << "}";
+    std::fflush(stdout);
+  }
+  j << "\n  ]\n}\n";
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}

@@ -1,0 +1,157 @@
+"""continue_orbits (pseudo-arclength continuation of forced periodic orbits, docs/python.md)
+against the closed-form forced response of a damped linear scene, and the behaviour of its
+Python callables (exceptions propagate, a wrong return is a TypeError)."""
+import math
+
+import numpy as np
+import pytest
+
+import stickslip as ss
+
+ZETA = 0.02  # modal damping ratio of every mode
+UNIT = 100.0  # the continuation parameter is p = W / UNIT [rad/s]: p and the states are O(0.01-1)
+
+
+def scene(modes=2):
+    """A clamped cantilever on `modes` damped modes, harmonic load at 0.1 m (no damper):
+    w = 260.8, 1634.5 rad/s."""
+    f = ss.FrameModel()
+    root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
+    m = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 10)
+    f.clamp(root)
+    basis = ss.compute_modes(f, num_modes=modes).with_modal_damping(np.full(modes, ZETA))
+
+    def at(F, W):
+        return ss.FrictionDampedSystem(f, basis, [], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F, W)])
+
+    return at, basis, at(1.0, 1.0).point_shape(m, 0.1, ss.LoadDirection.GlobalX)
+
+
+def receptance(psi, basis, F, W):
+    """Closed form: q_j'' + 2 zeta w_j q_j' + w_j^2 q_j = psi_j F sin(W t) has the orbit
+    q_j = Im(a_j e^{iWt}), a_j = psi_j F / (w_j^2 - W^2 + 2i zeta w_j W): the state (q, q') at
+    t0 = 0 and the amplitudes (|a_j|, W |a_j|)."""
+    w = basis.omega
+    a = psi * F / (w ** 2 - W ** 2 + 2j * ZETA * w * W)
+    return np.concatenate([np.imag(a), np.imag(1j * W * a)]), np.concatenate([np.abs(a), W * np.abs(a)])
+
+
+def test_frequency_branch_is_the_closed_form_receptance():
+    # Through the first resonance (w_1 = 260.8 rad/s, p = 2.608). Tolerances: each orbit solves
+    # |x(T) - x(0)| <= 1e-9 (absolute: |x| < 1) with runs at rtol 1e-9; the error of x0 is that
+    # residual over 1 - |mu| (mu = exp(-zeta w_1 T) ~ 0.88: x8) plus the run's global error
+    # ~rtol |x|: <= 2e-8 against |x0| ~ 0.02-0.1, measured <= 3e-8 relative: 1e-6. The amplitudes
+    # are max |x_i| over the steps and 256 samples per period: a sampled sine is short of its peak
+    # by <= 1 - cos(pi / 256) = 7.5e-5 of it: 1e-4 relative. The multipliers (variational
+    # monodromy at rtol 1e-9) are exp(lambda_j T), lambda_j = -zeta w_j +- i w_j sqrt(1 - zeta^2):
+    # 1e-6.
+    at, basis, psi = scene()
+    seen = []
+    branch = ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                                lambda p: 2 * math.pi / (p * UNIT), rtol=1e-9, atol=1e-14,
+                                initial_step=0.05, max_step=0.1, on_point=seen.append)
+    assert branch.status == ss.ContinuationStatus.Completed and branch.completed, branch.message
+    p = branch.parameters
+    assert p[0] == 2.3 and np.all(np.diff(p) > 0) and p[-1] > 2.75  # no fold: p grows to near p_end
+    assert len(p) >= 6 and p[p < 2.608].size and p[p > 2.608].size  # both sides of the resonance
+    assert [pt.parameter for pt in seen] == list(p)  # on_point saw every point, in order
+    w = basis.omega
+    lam = -ZETA * w + 1j * w * math.sqrt(1 - ZETA ** 2)
+    for pt in branch.points:
+        W = pt.parameter * UNIT
+        T = 2 * math.pi / W
+        x0, amp = receptance(psi, basis, 1.0, W)
+        o = pt.orbit
+        assert o.ok and o.period == pytest.approx(T, rel=1e-15)
+        assert np.abs(o.x0[:x0.size] - x0).max() < 1e-6 * np.abs(x0).max(), pt.parameter
+        assert np.abs(o.amplitudes - amp).max() < 1e-4 * amp.max(), pt.parameter
+        mu = np.sort(np.abs(np.concatenate([np.exp(lam * T), np.exp(np.conj(lam) * T)])))
+        assert np.abs(np.sort(np.abs(o.multipliers)) - mu).max() < 1e-6
+        assert o.stable and not pt.stability_changed and o.events == []
+        assert o.stick_fractions == [] and o.switches == []  # no damper
+
+
+def test_amplitude_branch_at_a_fixed_period_scales_linearly():
+    # A float period: continuation in the load amplitude F at W = 250 rad/s; the orbit is
+    # F times the closed form at F = 1 (tolerance as above: 1e-6 of the state).
+    at, basis, psi = scene()
+    W = 250.0
+    branch = ss.continue_orbits(at(1.0, W), lambda system, F: at(F, W), 1.0, 3.0, 2 * math.pi / W,
+                                rtol=1e-9, atol=1e-14, initial_step=0.2, max_step=0.5)
+    assert branch.completed, branch.message
+    assert len(branch.points) >= 3 and branch.parameters[-1] > 2.5
+    for pt in branch.points:
+        x0, _ = receptance(psi, basis, pt.parameter, W)
+        assert np.abs(pt.orbit.x0[:x0.size] - x0).max() < 1e-6 * np.abs(x0).max(), pt.parameter
+    # Downwards (p_end < p0) the branch goes the other way.
+    down = ss.continue_orbits(at(3.0, W), lambda system, F: at(F, W), 3.0, 2.0, 2 * math.pi / W,
+                              rtol=1e-9, atol=1e-14, initial_step=0.2, max_step=0.5)
+    assert down.completed and np.all(np.diff(down.parameters) < 0)
+
+
+class Boom(Exception):
+    pass
+
+
+def test_an_exception_in_a_callable_propagates_and_the_system_stays_usable():
+    at, basis, psi = scene(modes=1)
+    W = 250.0
+    calls = []
+
+    def parameter(system, F):
+        calls.append(F)
+        if len(calls) == 4:  # after the start (p0, p0 +- h), inside the first corrector
+            raise Boom("from parameter")
+        return at(F, W)
+
+    system = at(1.0, W)
+    with pytest.raises(Boom, match="from parameter"):
+        ss.continue_orbits(system, parameter, 1.0, 2.0, 2 * math.pi / W)
+    assert len(calls) == 4  # the run stopped at the exception
+
+    def period(p):
+        raise Boom("from period")
+
+    with pytest.raises(Boom, match="from period"):
+        ss.continue_orbits(system, lambda s, F: at(F, W), 1.0, 2.0, period)
+
+    def on_point(point):
+        raise Boom("from on_point")
+
+    with pytest.raises(Boom, match="from on_point"):
+        ss.continue_orbits(system, lambda s, F: at(F, W), 1.0, 2.0, 2 * math.pi / W, on_point=on_point)
+    # The system (left at the parameter of the failed call) still works.
+    orbit = ss.find_periodic_orbit(system, 2 * math.pi / W)
+    assert orbit.ok, orbit.message
+
+
+def test_bad_callables_and_options_are_reported():
+    at, basis, psi = scene(modes=1)
+    system = at(1.0, 250.0)
+    T = 2 * math.pi / 250.0
+    with pytest.raises(TypeError, match="must return the FrictionDampedSystem at p, got NoneType"):
+        ss.continue_orbits(system, lambda s, p: None, 1.0, 2.0, T)
+    with pytest.raises(ValueError, match="parameter must be a callable"):
+        ss.continue_orbits(system, 3.0, 1.0, 2.0, T)
+    with pytest.raises(ValueError, match="period must be finite and > 0"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, -T)
+    with pytest.raises(ValueError, match="p_end must differ from p0"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 1.0, T)
+    with pytest.raises(ValueError, match="options.initial_step"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, initial_step=1.0, max_step=0.1)
+    with pytest.raises(ValueError, match="monodromy"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, monodromy="guess")
+
+
+def test_a_damper_stuck_all_period_has_stick_fraction_one():
+    # A preload far above what the load can overcome: the damper never leaves Stick.
+    f = ss.FrameModel()
+    root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
+    m = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 10)
+    f.clamp(root)
+    basis = ss.compute_modes(f, num_modes=2).with_modal_damping(np.full(2, ZETA))
+    damper = ss.PointDamper(m, 0.15, 0.01, 5e3, 50.0, ss.CoulombLaw(0.35, 0.3))
+    system = ss.FrictionDampedSystem(f, basis, [damper], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, 2.0, 250.0)])
+    orbit = ss.find_periodic_orbit(system, 2 * math.pi / 250.0, tolerance=1e-8)
+    assert orbit.ok, orbit.message
+    assert orbit.stick_fractions == [pytest.approx(1.0, abs=1e-12)] and orbit.switches == [0]
