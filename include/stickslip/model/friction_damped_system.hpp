@@ -1397,6 +1397,10 @@ class FrictionDampedSystem {
           return contact.decide(ContactState::Stick, Scalar(0), e.N[i], e.f[i]);
         });
         if (next == ContactState::LiftOff) continue;  // reported by the lift-off guard / check
+        if (next != ContactState::Stick && has_walls_ && rest_at_wall(mode, i, next, x)) {
+          consistent = false;
+          break;  // re-solve with the wall holding it
+        }
         if (next != ContactState::Stick) {
           mode[i] = next;
           consistent = false;
@@ -1494,6 +1498,15 @@ class FrictionDampedSystem {
   /// finish: mu_s N + f) is replaced by N, positive in contact (affine in the state like the
   /// others; it falls to 0 with the lift-off guard).
   static void rest_guard(WallRest wall, Scalar N, Scalar* g) noexcept { g[wall == WallRest::Start ? 0 : 1] = N; }
+  /// A damper at rest that would slip into a wall it lies at (X within kWallBand L of the end, or
+  /// beyond it) rests against that wall instead: marked, X set to the end. True when it did.
+  /// (Its turning point after a rebound slower than the stepper's guard_zero_tolerance can
+  /// resolve lies there: the end guard would start "at zero" and miss the crossing.)
+  bool rest_at_wall(Mode& mode, Index i, ContactState next, State& x);
+  /// Width of the band at a wall end, relative to the member length, in which a damper at rest
+  /// counts as lying at the wall (1e-8 L: 4e-10 m on a 4 cm platform, above the default
+  /// guard_zero_tolerance of 1e-12 and far below any slip that matters).
+  static constexpr double kWallBand = 1e-8;
   /// Throws std::invalid_argument when a damper is marked as resting at an end that is not a wall.
   void validate_walls(const Mode& mode, const char* where) const;
   /// Clears the wall marks of dampers that are no longer stuck (so that a later stick away from
@@ -2157,6 +2170,20 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::split_wall_reaction(const Mode&
       e.f[i] = wall == WallRest::Start ? capacity : -capacity;  // exactly the bound (not f - excess)
     }
   }
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::rest_at_wall(Mode& mode, Index i, ContactState next, State& x) {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  if (!moving_[iu] || mode.wall(i) != WallRest::None) return false;
+  const int end = next == ContactState::SlipNegative ? 0 : 1;  // the end it would slip towards
+  if (end_kind_[iu][static_cast<std::size_t>(end)] != MemberEnd::Wall) return false;
+  const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+  const Scalar X = x[contact_offset() + i], band = Scalar(kWallBand) * L;
+  if (end == 0 ? X > band : X < L - band) return false;
+  mode.set_wall(i, end == 0 ? WallRest::Start : WallRest::Finish);
+  x[contact_offset() + i] = end == 0 ? Scalar(0) : L;
+  return true;
 }
 
 template <class Scalar_, class Law_, int Modes>
