@@ -31,8 +31,8 @@ inline const char* contact_options_help() {
          "                         Newton's coefficient e in [0, 1] (default: stop at lift-off)\n"
          "  --ends stop|extend|wall  at a platform end: stop the run (default), continue the end\n"
          "                         elements' shapes (same as --beyond-ends), or reflect the\n"
-         "                         contact point from a rigid wall (V -> -e V; no resting\n"
-         "                         contact with a wall yet: a damper dragged into it chatters)\n"
+         "                         contact point from a rigid wall (V -> -e V; a damper pushed\n"
+         "                         into it comes to rest against it)\n"
          "  --wall-restitution e   the walls' coefficient of restitution (default 1)\n";
 }
 

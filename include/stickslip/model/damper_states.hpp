@@ -13,6 +13,14 @@
 
 namespace stickslip {
 
+/// The member end a stuck damper rests against (docs/model.md, "Resting at a wall"): a damper
+/// in ContactState::Stick at a MemberEnd::Wall whose wall takes the tangential force into it.
+enum class WallRest : std::uint8_t {
+  None,   ///< not resting at a wall (an ordinary stick, or not stuck)
+  Start,  ///< resting against the wall at X = 0
+  Finish  ///< resting against the wall at X = L
+};
+
 /// Contact state of every damper of a scene (the hybrid system's discrete mode). Fixed capacity,
 /// so copying a mode never allocates. 3^N combinations for N dampers with exact friction laws
 /// (the paper's eqs 26-29 are the four stick/slip cases for N = 2).
@@ -42,28 +50,51 @@ class DamperStates {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
     return states_[static_cast<std::size_t>(i)];
   }
-  /// Same number of dampers, each in the same state.
+  /// The wall damper `i` rests against: the one set by set_wall() while its state is Stick,
+  /// None otherwise (a damper that left the stick state no longer rests; asserts 0 <= i < size()).
+  WallRest wall(Eigen::Index i) const {
+    STICKSLIP_ASSERT(i >= 0 && i < size_);
+    if (states_[static_cast<std::size_t>(i)] != ContactState::Stick) return WallRest::None;
+    const std::uint64_t bit = std::uint64_t(1) << i;
+    return (start_ & bit) ? WallRest::Start : ((finish_ & bit) ? WallRest::Finish : WallRest::None);
+  }
+  /// Marks damper `i` as resting against wall `w` (None: not resting). The mark counts while the
+  /// damper's state is Stick (see wall()); asserts 0 <= i < size().
+  void set_wall(Eigen::Index i, WallRest w) {
+    STICKSLIP_ASSERT(i >= 0 && i < size_);
+    const std::uint64_t bit = std::uint64_t(1) << i;
+    start_ = w == WallRest::Start ? (start_ | bit) : (start_ & ~bit);
+    finish_ = w == WallRest::Finish ? (finish_ | bit) : (finish_ & ~bit);
+  }
+
+  /// Same number of dampers, each in the same state and resting at the same wall.
   bool operator==(const DamperStates& o) const noexcept {
     if (size_ != o.size_) return false;
     for (std::size_t i = 0; i < size_; ++i)
       if (states_[i] != o.states_[i]) return false;
+    if (start_ == o.start_ && finish_ == o.finish_) return true;
+    for (Eigen::Index i = 0; i < size_; ++i)  // marks of dampers that left Stick do not count
+      if (wall(i) != o.wall(i)) return false;
     return true;
   }
   /// Not operator==.
   bool operator!=(const DamperStates& o) const noexcept { return !(*this == o); }
 
-  /// "stick,slip+,..." for logs.
+  /// "stick,slip+,..." for logs; a damper resting at a wall reads "stick@start" or "stick@finish".
   std::string to_string() const {
     std::string s;
     for (std::size_t i = 0; i < size_; ++i) {
       if (i) s += ',';
       s += stickslip::to_string(states_[i]);
+      const WallRest w = wall(static_cast<Eigen::Index>(i));
+      if (w != WallRest::None) s += w == WallRest::Start ? "@start" : "@finish";
     }
     return s;
   }
 
  private:
   std::array<ContactState, static_cast<std::size_t>(max_dampers)> states_{};
+  std::uint64_t start_ = 0, finish_ = 0;  // bit i: damper i marked as resting at that wall
   std::uint8_t size_ = 0;
 };
 

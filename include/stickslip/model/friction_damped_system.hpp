@@ -189,6 +189,10 @@ class FrictionDampedSystem {
     Vector y;      ///< damper displacements along the contact normal, y = q^T psi_w(X) (eq 17); y_d in flight
     /// Gap y_member - y_d of a separated damper (>= 0 in flight, its guard), 0 in contact.
     Vector gap;
+    /// Reaction of the wall on a damper resting against it along u [N] (DamperStates::wall;
+    /// docs/model.md "Resting at a wall"), 0 otherwise: the contact's tangential force is
+    /// f + wall_force, f the friction share (at most mu_s N towards the wall).
+    Vector wall_force;
     /// False when a force or acceleration is not finite (an overflowing state): rhs()
     /// then returns NaN for the stepper's finiteness check.
     bool finite = true;
@@ -367,6 +371,7 @@ class FrictionDampedSystem {
                                     "] is separated, but damper " + std::to_string(i) +
                                     " cannot separate (PointDamper::separation = Stop, or a "
                                     "constant normal load, or lift-off not watched)");
+    if (has_walls_) validate_walls(mode, where);
   }
 
   // ---- hybrid-system concept ------------------------------------------------------------------
@@ -557,8 +562,9 @@ class FrictionDampedSystem {
       else if (nc > 0)
         detail::with_law(dampers_[iu].law, [&](const auto& law) {
           CoulombContact<std::decay_t<decltype(law)>> contact(law);
-          contact.guards(mode[i], e.V[i], e.N[i], e.f[i], watch_lift_off(i), g + k);
+          contact.guards(mode[i], e.V[i], e.N[i], e.f[i] + e.wall_force[i], watch_lift_off(i), g + k);
         });
+      if (has_walls_ && mode.wall(i) != WallRest::None) rest_guard(mode.wall(i), e.N[i], g + k);
       k += nc;
       if (end_guards_of(mode, i)) {
         const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
@@ -649,7 +655,8 @@ class FrictionDampedSystem {
     Mn_.setZero(n_, n_);
     lun_ = Eigen::PartialPivLU<Matrix>(n_);
     eval_.qdd.setZero(n_);
-    for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y, &eval_.gap})
+    for (Vector* v : {&eval_.N, &eval_.f, &eval_.V, &eval_.Vdot, &eval_.xdd, &eval_.X, &eval_.slope, &eval_.y, &eval_.gap,
+                      &eval_.wall_force})
       v->setZero(D_);
     flying_.assign(static_cast<std::size_t>(D_), 0);
     impacts_.reserve(has_impacts_ ? 1024 : 0);
@@ -960,6 +967,7 @@ class FrictionDampedSystem {
         e.Vdot[i] = e.xdd[i] - bq - d_[i];
       }
     }
+    if (has_walls_) split_wall_reaction(mode);
     e.finite = detail::all_finite(e.qdd) && detail::all_finite(e.N) && detail::all_finite(e.f);
   }
 
@@ -1398,6 +1406,10 @@ class FrictionDampedSystem {
           return contact.decide(ContactState::Stick, Scalar(0), e.N[i], e.f[i]);
         });
         if (next == ContactState::LiftOff) continue;  // reported by the lift-off guard / check
+        if (next != ContactState::Stick && has_walls_ && rest_at_wall(mode, i, next, x)) {
+          consistent = false;
+          break;  // re-solve with the wall holding it
+        }
         if (next != ContactState::Stick) {
           mode[i] = next;
           consistent = false;
@@ -1487,6 +1499,32 @@ class FrictionDampedSystem {
   /// the member; the other dampers' states are then resolved again. False when resolve fails.
   bool land_or_separate(Mode& mode, const std::vector<Index>& candidates, Scalar t, State& x);
 
+  // ---- resting at a wall (docs/model.md "Resting at a wall"; defined below the class) --------
+  /// A stuck damper resting at a wall: the tangential force f solved for splits into friction
+  /// (up to mu_s N towards the wall) and the wall's reaction (the excess, into eval_.wall_force).
+  void split_wall_reaction(const Mode& mode) const;
+  /// The stick guard of a resting damper that would let it slip into its wall (start: mu_s N - f,
+  /// finish: mu_s N + f) is replaced by N, positive in contact (affine in the state like the
+  /// others; it falls to 0 with the lift-off guard).
+  static void rest_guard(WallRest wall, Scalar N, Scalar* g) noexcept { g[wall == WallRest::Start ? 0 : 1] = N; }
+  /// A damper at rest that would slip into a wall it lies at (X within kWallBand L of the end, or
+  /// beyond it) rests against that wall instead: marked, X set to the end. True when it did.
+  /// (Its turning point after a rebound slower than the stepper's guard_zero_tolerance can
+  /// resolve lies there: the end guard would start "at zero" and miss the crossing.)
+  bool rest_at_wall(Mode& mode, Index i, ContactState next, State& x);
+  /// Width of the band at a wall end, relative to the member length, in which a damper at rest
+  /// counts as lying at the wall (1e-8 L: 4e-10 m on a 4 cm platform, above the default
+  /// guard_zero_tolerance of 1e-12 and far below any slip that matters).
+  static constexpr double kWallBand = 1e-8;
+  /// Throws std::invalid_argument when a damper is marked as resting at an end that is not a wall.
+  void validate_walls(const Mode& mode, const char* where) const;
+  /// Clears the wall marks of dampers that are no longer stuck (so that a later stick away from
+  /// the wall is an ordinary one).
+  static void forget_left_walls(Mode& mode) {
+    for (Index i = 0; i < mode.size(); ++i)
+      if (mode[i] != ContactState::Stick) mode.set_wall(i, WallRest::None);
+  }
+
   // Scene.
   std::vector<Damper> dampers_;
   std::vector<Load> loads_;
@@ -1564,6 +1602,7 @@ class FrictionDampedSystem {
   // the audit books impacts (separation or walls); the walls hit at the current transition.
   std::vector<std::array<MemberEnd, 2>> end_kind_;
   bool has_impacts_ = false;
+  bool has_walls_ = false;  // some damper has a MemberEnd::Wall (resting contact possible)
   std::vector<std::pair<Index, int>> wall_hits_;
   mutable std::vector<char> flying_;
   Matrix response_, response_x_, impulse_dir_;
@@ -1655,6 +1694,8 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
     end_kind_.push_back({resolved(d.start_end), resolved(d.finish_end)});
     has_impacts_ = has_impacts_ || separable || end_kind_.back()[0] == MemberEnd::Wall ||
                    end_kind_.back()[1] == MemberEnd::Wall;
+    has_walls_ = has_walls_ || (moving_[static_cast<std::size_t>(i)] &&
+                                (end_kind_.back()[0] == MemberEnd::Wall || end_kind_.back()[1] == MemberEnd::Wall));
   }
 
   load_psi_.resize(n_, static_cast<Index>(loads_.size()));
@@ -1778,9 +1819,10 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
   }
   if (!separation_transition(mode, t, x))
     return stop(StopReason::NoConsistentState, impacting_.front(), t, x, mode);
-  return resolve(mode, involved, t, x) && land_or_separate(mode, impacting_, t, x)
-             ? TransitionAction::proceed()
-             : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+  const bool consistent = resolve(mode, involved, t, x) && land_or_separate(mode, impacting_, t, x);
+  forget_left_walls(mode);
+  return consistent ? TransitionAction::proceed()
+                    : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -1809,7 +1851,9 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Sca
   for (Index i = 0; i < D_; ++i)
     if (flight_slot_[static_cast<std::size_t>(i)] >= 0 && mode[i] != ContactState::Separated)
       lifting_.push_back(i);
-  return land_or_separate(mode, lifting_, t, x);
+  const bool consistent = land_or_separate(mode, lifting_, t, x);
+  forget_left_walls(mode);
+  return consistent;
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -2044,7 +2088,12 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i
   inertial_[iu] = 0;  // (no preload in the probe: no rows of its own)
   impulse_response(mode, x);
   inertial_[iu] = inertial;
-  const Scalar V_after = -d.wall_restitution * V;
+  // Resting contact (docs/model.md "Resting at a wall"): a damper in contact with a stick state
+  // that arrives at or below its landing speed, or at a plastic wall, stops against it.
+  using std::abs;
+  const bool rests = has_stick_[iu] && mode[i] != ContactState::Separated &&
+                     (d.wall_restitution == Scalar(0) || abs(V) <= d.landing_speed);
+  const Scalar V_after = rests ? Scalar(0) : -d.wall_restitution * V;
   Eigen::Matrix<Scalar, 2, 1> L(Scalar(0), Scalar(0));
   if (normal) {
     L = inverse_effective_mass(s, m).inverse() * Eigen::Matrix<Scalar, 2, 1>(Scalar(0), V_after - V);
@@ -2059,9 +2108,11 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i
   if (audit_size() > 4) x[energy_offset() + 4] += loss;
   ContactState to = mode[i];
   if (mode[i] != ContactState::Separated) {
-    if (V_after == Scalar(0) && has_stick_[iu]) {
+    if (rests) {  // at the end (it was within |V| times the event time tolerance of it)
       to = ContactState::Stick;
-      involved_.push_back(i);  // resolve() decides stick or slip
+      mode.set_wall(i, end == 0 ? WallRest::Start : WallRest::Finish);
+      x[contact_offset() + i] = end == 0 ? Scalar(0) : shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+      involved_.push_back(i);  // resolve() keeps it (the wall takes the push) or lets it slip away
     } else {
       to = slip_state(V_after);
     }
@@ -2102,6 +2153,60 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::land_or_separate(Mode& mode, co
     if (!resolve(mode, involved_, t, x)) return false;
   }
   return true;
+}
+
+// ---- resting at a wall (docs/model.md "Resting at a wall") -----------------------------------
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::split_wall_reaction(const Mode& mode) const {
+  Evaluation& e = eval_;
+  for (Index i = 0; i < D_; ++i) {
+    e.wall_force[i] = Scalar(0);
+    const WallRest wall = mode.wall(i);
+    if (wall == WallRest::None) continue;
+    const Scalar mu_s = detail::with_law(dampers_[static_cast<std::size_t>(i)].law, [](const auto& law) -> Scalar {
+      if constexpr (std::decay_t<decltype(law)>::has_stick_state)
+        return law.static_coefficient();
+      else
+        return Scalar(0);  // (never resting: validate_walls)
+    });
+    // Start wall (X = 0): it pushes the damper along +u, R >= 0, and takes f - mu_s N when the
+    // force f needed to hold the damper exceeds the friction bound mu_s N; finish wall: R <= 0.
+    const Scalar capacity = mu_s * e.N[i];
+    const Scalar excess = wall == WallRest::Start ? e.f[i] - capacity : e.f[i] + capacity;
+    if (wall == WallRest::Start ? excess > Scalar(0) : excess < Scalar(0)) {
+      e.wall_force[i] = excess;
+      e.f[i] = wall == WallRest::Start ? capacity : -capacity;  // exactly the bound (not f - excess)
+    }
+  }
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::rest_at_wall(Mode& mode, Index i, ContactState next, State& x) {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  if (!moving_[iu] || mode.wall(i) != WallRest::None) return false;
+  const int end = next == ContactState::SlipNegative ? 0 : 1;  // the end it would slip towards
+  if (end_kind_[iu][static_cast<std::size_t>(end)] != MemberEnd::Wall) return false;
+  const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+  const Scalar X = x[contact_offset() + i], band = Scalar(kWallBand) * L;
+  if (end == 0 ? X > band : X < L - band) return false;
+  mode.set_wall(i, end == 0 ? WallRest::Start : WallRest::Finish);
+  x[contact_offset() + i] = end == 0 ? Scalar(0) : L;
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::validate_walls(const Mode& mode, const char* where) const {
+  for (Index i = 0; i < D_; ++i) {
+    const WallRest wall = mode.wall(i);
+    if (wall == WallRest::None) continue;
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (!moving_[iu] || !has_stick_[iu] || end_kind_[iu][wall == WallRest::Start ? 0 : 1] != MemberEnd::Wall)
+      throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) + "] rests at the " +
+                                  (wall == WallRest::Start ? "start" : "finish") + " wall, but damper " +
+                                  std::to_string(i) + " has no wall there (a moving contact, a law with a "
+                                  "stick state and MemberEnd::Wall at that end are needed)");
+  }
 }
 
 }  // namespace stickslip

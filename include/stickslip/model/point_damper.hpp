@@ -62,13 +62,16 @@ struct PointDamper {
   /// Newton's coefficient of restitution e in [0, 1] of this damper's impacts (Separate only).
   Scalar restitution = Scalar(0);
   /// Impacts approaching at or below this relative normal speed land (persistent contact, the
-  /// rule that ends a Zeno sequence of bounces; NewtonImpact) [m/s], >= 0 (Separate only).
+  /// rule that ends a Zeno sequence of bounces; NewtonImpact) [m/s], >= 0 (Separate); a
+  /// contact arriving at a MemberEnd::Wall at or below it comes to rest against the wall
+  /// (docs/model.md "Resting at a wall").
   Scalar landing_speed = Scalar(1e-4);
   /// What the moving contact does at X = 0 of the member (docs/model.md, "Member ends").
   MemberEnd start_end = MemberEnd::Default;
   /// What the moving contact does at X = L of the member.
   MemberEnd finish_end = MemberEnd::Default;
-  /// Coefficient of restitution e in [0, 1] of a MemberEnd::Wall: V -> -e V.
+  /// Coefficient of restitution e in [0, 1] of a MemberEnd::Wall: V -> -e V (e = 0, or an arrival
+  /// at or below landing_speed: the damper rests against the wall).
   Scalar wall_restitution = Scalar(1);
 
   /// Effective mass s m in this blade's equations (paper eqs 11-14).
