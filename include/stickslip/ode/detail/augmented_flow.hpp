@@ -40,6 +40,8 @@ struct ExactStepperStats {
   long long_steps = 0;           ///< exact steps of several grid steps (guard-rate bound)
   long linear_part_refreshes = 0;  ///< refreshes of a frozen linear part in inexact modes
   long mode_cache_hits = 0;      ///< modes whose propagators came from the mode cache
+  long dense_outputs = 0;        ///< points taken from a Lawson step's dense output
+  long event_reintegrations = 0;  ///< trial steps re-taken to refine an event (Reintegrate)
 };
 
 namespace detail {
@@ -85,6 +87,7 @@ class AugmentedFlow {
         ladder_k_ = e.ladder_k;
         base_ = e.base;
         rate_ = e.rate;
+        decay_ = e.decay;
         slot_ = static_cast<int>(i);
         restored = true;
         ++st.mode_cache_hits;
@@ -102,11 +105,17 @@ class AugmentedFlow {
     omega_ = lp.omega;
     if (rate_stale) {
       rate_ = 0;
+      decay_ = 0;
       if (n > 0) {
         eig_.compute(lp.A, false);
         ++st.eigen_decompositions;
-        if (eig_.info() == Eigen::Success) rate_ = eig_.eigenvalues().cwiseAbs().maxCoeff();
-        else rate_ = lp.A.cwiseAbs().rowwise().sum().maxCoeff();  // a bound on |lambda|
+        if (eig_.info() == Eigen::Success) {
+          rate_ = eig_.eigenvalues().cwiseAbs().maxCoeff();
+          decay_ = std::max(Scalar(0), -eig_.eigenvalues().real().minCoeff());
+        } else {
+          rate_ = lp.A.cwiseAbs().rowwise().sum().maxCoeff();  // a bound on |lambda|
+          decay_ = rate_;
+        }
       }
       version_ = lp.version;
       rate_valid_ = true;
@@ -127,6 +136,10 @@ class AugmentedFlow {
 
   /// max(|lambda(A_m)|, w_k): the fastest rate (rad per time unit) of the mode's solutions.
   Scalar fastest_rate() const noexcept { return fastest_; }
+
+  /// max(0, -Re lambda(A_m)): the fastest decay of the mode's solutions, i.e. the growth rate of
+  /// exp(-Â tau) (the clock block is a rotation).
+  Scalar decay_rate() const noexcept { return decay_; }
 
   /// y = (x, 1, cos w_1 t, sin w_1 t, ...).
   template <class X>
@@ -196,6 +209,7 @@ class AugmentedFlow {
       e.ladder_k = K;
       e.base = base;
       e.rate = rate_;
+      e.decay = decay_;
       ++e.stamp;
     }
   }
@@ -313,7 +327,7 @@ class AugmentedFlow {
     Matrix a;
     std::vector<Matrix> ladder;
     int ladder_k = -1;
-    Scalar base = 0, rate = 0;
+    Scalar base = 0, rate = 0, decay = 0;
     std::uint64_t stamp = 0;
   };
   std::vector<Entry> cache_;
@@ -326,7 +340,7 @@ class AugmentedFlow {
   std::vector<Scalar> omega_;
   Eigen::EigenSolver<Matrix> eig_;
   Eigen::Index nx_ = 0, n_ = 0;
-  Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
+  Scalar norm1_ = 0, rate_ = 0, decay_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
   std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;
