@@ -79,6 +79,7 @@ class AugmentedFlow {
       a_.swap(build_);
       ladder_k_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
+      balance();
       slot_ = -1;
       for (std::size_t i = 0; i < cache_.size() && i < cache_size_; ++i) {
         Entry& e = cache_[i];
@@ -171,8 +172,8 @@ class AugmentedFlow {
   }
 
   /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
-  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
-  /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
+  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||B||_1 base 2^-K <= 2^-ladder_tail_bits (B: the
+  /// balanced Â, see expm); Phi_0 and Phi_K by expm, the others by squaring. Kept
   /// while Â and base do not change; with `keep`, also in the mode cache for a later mode with
   /// the same Â.
   void prepare(Scalar base, ExactStepperStats& st, bool keep = true) {
@@ -183,20 +184,16 @@ class AugmentedFlow {
     if (ladder_k_ >= 0 && base == base_) return;
     using std::ceil;
     using std::log2;
-    const int K = std::max(0, static_cast<int>(ceil(log2(Scalar(2) * norm1_ * base))));
+    const int K = std::max(
+        0, static_cast<int>(ceil(log2(std::ldexp(bnorm1_ * base, ladder_tail_bits)))));
     ladder_.resize(static_cast<std::size_t>(K) + 1);
-    build_ = a_ * (base / std::pow(Scalar(2), Scalar(K)));
-    ladder_[static_cast<std::size_t>(K)] = build_.exp();
-    ++st.propagator_exponentials;
+    expm(base / std::pow(Scalar(2), Scalar(K)), ladder_[static_cast<std::size_t>(K)], st);
     for (int k = K; k > 1; --k) {
       const auto ku = static_cast<std::size_t>(k);
       ladder_[ku - 1].noalias() = ladder_[ku] * ladder_[ku];
     }
-    if (K > 0) {  // the grid propagator, used most, directly (no round-off of K squarings)
-      build_ = a_ * base;
-      ladder_[0] = build_.exp();
-      ++st.propagator_exponentials;
-    }
+    if (K > 0)  // the grid propagator, used most, directly (no round-off of K squarings)
+      expm(base, ladder_[0], st);
     base_ = base;
     ladder_k_ = K;
     if (keep && cache_size_ > 0) {  // for a later mode with the same Â (round robin)
@@ -242,9 +239,7 @@ class AugmentedFlow {
     const auto nq = static_cast<Eigen::Index>(forms.size());
     w.setZero(nq * d, d);
     if (nq == 0) {
-      build_ = a_ * tau;
-      phi = build_.exp();
-      ++st.propagator_exponentials;
+      expm(tau, phi, st);
       return;
     }
     for (Eigen::Index j = 0; j < nq; ++j) {
@@ -266,6 +261,22 @@ class AugmentedFlow {
     }
   }
 
+  /// out = exp(Â tau) by Padé with scaling and squaring (MatrixFunctions) on the balanced
+  /// generator: exp(Â tau) = D exp(B tau) D^-1, B = D^-1 Â D (see balance()), where ||B|| ~ the
+  /// spectral radius of Â rather than ||Â|| (modal coordinates: ||Â||_1 ~ w_max^2 against
+  /// w_max), so that the approximant needs few or no squarings. D is a power of 2 per component:
+  /// the similarity is exact in floating point.
+  void expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
+    build_ = bal_ * tau;
+    out = build_.exp();
+    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    ++st.propagator_exponentials;
+  }
+
+  /// The ladder's finest step leaves ||B|| tau <= 2^-ladder_tail_bits for the Taylor tail of expv:
+  /// ~5 terms there against ~K/2 ladder products on the way (the balance of the two costs).
+  static constexpr int ladder_tail_bits = 8;
+
   /// True when prepare() built a ladder (Â != 0 and a finite base).
   bool has_ladder() const noexcept { return ladder_k_ >= 0; }
 
@@ -277,7 +288,7 @@ class AugmentedFlow {
 
   /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
   /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
-  /// without a ladder, s Taylor sub-steps with ||Â||_1 tau / s <= 1.
+  /// without a ladder, s Taylor sub-steps with ||B||_1 tau / s <= 1 (B: the balanced Â).
   void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
     if (!(tau > 0) || !(norm1_ > 0)) return;
     if (ladder_k_ >= 0) {
@@ -297,7 +308,7 @@ class AugmentedFlow {
       return;
     }
     using std::ceil;
-    const Scalar s_real = std::max(Scalar(1), ceil(norm1_ * tau));
+    const Scalar s_real = std::max(Scalar(1), ceil(bnorm1_ * tau));
     const Scalar dt = tau / s_real;
     for (long i = 0; i < static_cast<long>(s_real); ++i) taylor(dt, v, st);
   }
@@ -308,19 +319,58 @@ class AugmentedFlow {
     v.swap(prod_);
     ++st.matvecs;
   }
-  // v <- sum_k (Â dt)^k / k! v until the term is below the unit round-off relative to the sum.
+  // v <- sum_k (Â dt)^k / k! v, in the balanced coordinates w = D^-1 v (terms (B dt)^k / k! w),
+  // until the term is below the unit round-off relative to the sum.
   void taylor(Scalar dt, Vector& v, ExactStepperStats& st) {
     if (!(dt > 0)) return;
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    v.array() /= scale_.array();
     term_ = v;
     for (int k = 1; k <= 40; ++k) {
-      prod_.noalias() = a_ * term_;
+      prod_.noalias() = bal_ * term_;
       ++st.matvecs;
       term_ = (dt / Scalar(k)) * prod_;
       v += term_;
       if (term_.template lpNorm<Eigen::Infinity>() <= eps * v.template lpNorm<Eigen::Infinity>())
         break;
     }
+    v.array() *= scale_.array();
+  }
+
+  // B = D^-1 Â D with D = diag(scale_), powers of 2, chosen so that each component's row and
+  // column (off the diagonal) have comparable 1-norms (Parlett & Reinsch, Numer. Math. 13, 1969,
+  // the balancing of LAPACK's gebal without permutations); bnorm1_ = ||B||_1.
+  void balance() {
+    const Eigen::Index d = a_.rows();
+    bal_ = a_;
+    scale_.setOnes(d);
+    for (int sweep = 0; sweep < 32; ++sweep) {
+      bool done = true;
+      for (Eigen::Index i = 0; i < d; ++i) {
+        Scalar c = bal_.col(i).cwiseAbs().sum() - std::abs(bal_(i, i));
+        Scalar r = bal_.row(i).cwiseAbs().sum() - std::abs(bal_(i, i));
+        if (!(c > 0) || !(r > 0)) continue;
+        const Scalar total = c + r;
+        Scalar f = 1;
+        while (c < r / 2) {
+          c *= 2;
+          r /= 2;
+          f *= 2;
+        }
+        while (c >= r * 2) {
+          c /= 2;
+          r *= 2;
+          f /= 2;
+        }
+        if (c + r >= Scalar(0.95) * total) continue;
+        done = false;
+        scale_[i] *= f;
+        bal_.col(i) *= f;
+        bal_.row(i) /= f;
+      }
+      if (done) break;
+    }
+    bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
   }
 
   struct Entry {
@@ -334,13 +384,14 @@ class AugmentedFlow {
   std::size_t cache_size_ = 8, next_slot_ = 0;
   int slot_ = -1;
   bool last_restored_ = false;
-  Matrix a_, build_, big_, big_exp_;
+  Matrix a_, bal_, build_, big_, big_exp_;
+  Vector scale_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;
   std::vector<Scalar> omega_;
   Eigen::EigenSolver<Matrix> eig_;
   Eigen::Index nx_ = 0, n_ = 0;
-  Scalar norm1_ = 0, rate_ = 0, decay_ = 0, fastest_ = 0, base_ = 0;
+  Scalar norm1_ = 0, bnorm1_ = 0, rate_ = 0, decay_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
   std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;

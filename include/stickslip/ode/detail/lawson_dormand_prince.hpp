@@ -100,9 +100,7 @@ class LawsonDormandPrince {
           flow.generation() == last_generation_) {
         for (int i = 1; i < 6; ++i) {
           const auto iu = static_cast<std::size_t>(i);
-          work_ = flow.generator() * (c(cs[iu] - cs[iu - 1]) * h);
-          stage_[iu - 1] = work_.exp();
-          ++st.propagator_exponentials;
+          flow.expm(c(cs[iu] - cs[iu - 1]) * h, stage_[iu - 1], st);
         }
         cached_h_ = h;
         cached_generation_ = flow.generation();
@@ -147,15 +145,13 @@ class LawsonDormandPrince {
   /// comment.
   /// Five products with exp(-h Â), computed by Padé once per step length and Â. Call only where
   /// dense_usable(flow, h).
-  void prepare_dense(const AugmentedFlow<Scalar>& flow, Scalar h, const Vector& y0,
+  void prepare_dense(AugmentedFlow<Scalar>& flow, Scalar h, const Vector& y0,
                      const Vector& r0, const Vector& r1, ExactStepperStats& st) {
     STICKSLIP_ASSERT(stages_of_run_step_ && "LawsonDormandPrince: dense output of a trial step");
     const auto c = [](double v) { return static_cast<Scalar>(v); };
     using std::abs;
     if (!(abs(h - back_h_) <= Scalar(1e-12) * h && flow.generation() == back_generation_)) {
-      work_ = flow.generator() * (-h);
-      back_ = work_.exp();
-      ++st.propagator_exponentials;
+      flow.expm(-h, back_, st);
       back_h_ = h;
       back_generation_ = flow.generation();
     }
@@ -200,7 +196,6 @@ class LawsonDormandPrince {
   // Stage propagators exp((c_i - c_{i-1}) h Â) of cached_h_ on Â of cached_generation_, and the
   // h and Â of the last step with reuse.
   std::array<Matrix, 5> stage_;
-  Matrix work_;
   // Dense output: exp(-back_h_ Â) of back_generation_, and the vectors of Hairer's form.
   Matrix back_;
   Vector w0_, dd_, q3_, q4_, q5_;
