@@ -253,7 +253,10 @@ class AugmentedFlow {
       qh.block(0, nx_, n, c) = tau * q.topRightCorner(n, c);
       qh.block(nx_, 0, c, n) = tau * q.bottomLeftCorner(c, n);
       qh.bottomRightCorner(c, c) = tau * q.bottomRightCorner(c, c);
+      // Balanced as in expm: the blocks hold Â and Âᵀ, as badly scaled as Â.
+      balance_in_place(big_, big_scale_);
       big_exp_ = big_.exp();
+      big_exp_ = big_scale_.asDiagonal() * big_exp_ * big_scale_.cwiseInverse().asDiagonal();
       ++st.propagator_exponentials;
       if (j == 0) phi = big_exp_.bottomRightCorner(d, d);
       w.middleRows(j * d, d).noalias() =
@@ -341,14 +344,19 @@ class AugmentedFlow {
   // column (off the diagonal) have comparable 1-norms (Parlett & Reinsch, Numer. Math. 13, 1969,
   // the balancing of LAPACK's gebal without permutations); bnorm1_ = ||B||_1.
   void balance() {
-    const Eigen::Index d = a_.rows();
     bal_ = a_;
-    scale_.setOnes(d);
+    balance_in_place(bal_, scale_);
+    bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
+  }
+  // m <- D^-1 m D (see balance()), the powers of 2 of D into scale.
+  static void balance_in_place(Matrix& m, Vector& scale) {
+    const Eigen::Index d = m.rows();
+    scale.setOnes(d);
     for (int sweep = 0; sweep < 32; ++sweep) {
       bool done = true;
       for (Eigen::Index i = 0; i < d; ++i) {
-        Scalar c = bal_.col(i).cwiseAbs().sum() - std::abs(bal_(i, i));
-        Scalar r = bal_.row(i).cwiseAbs().sum() - std::abs(bal_(i, i));
+        Scalar c = m.col(i).cwiseAbs().sum() - std::abs(m(i, i));
+        Scalar r = m.row(i).cwiseAbs().sum() - std::abs(m(i, i));
         if (!(c > 0) || !(r > 0)) continue;
         const Scalar total = c + r;
         Scalar f = 1;
@@ -364,13 +372,12 @@ class AugmentedFlow {
         }
         if (c + r >= Scalar(0.95) * total) continue;
         done = false;
-        scale_[i] *= f;
-        bal_.col(i) *= f;
-        bal_.row(i) /= f;
+        scale[i] *= f;
+        m.col(i) *= f;
+        m.row(i) /= f;
       }
       if (done) break;
     }
-    bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
   }
 
   struct Entry {
@@ -385,7 +392,7 @@ class AugmentedFlow {
   int slot_ = -1;
   bool last_restored_ = false;
   Matrix a_, bal_, build_, big_, big_exp_;
-  Vector scale_;
+  Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;
   std::vector<Scalar> omega_;
