@@ -117,8 +117,9 @@ TEST(ExactLinearStepperFrozen, FrozenLinearPartOfAMovingPointKeepsOrderFive) {
     ASSERT_TRUE(r.ok()) << r.message;
     EXPECT_EQ(sys.calls() - calls_before, 1) << "h " << h << ": A refreshed, not frozen";
     EXPECT_EQ(stepper.work().linear_part_refreshes, 0) << "h " << h;
-    // The mode's ladder (<= 2 Padé) plus the five stage propagators of the one step length.
-    EXPECT_LE(stepper.work().propagator_exponentials, 7) << "h " << h;
+    // The mode's ladder (<= 2 Padé) plus the five stage propagators of the one step length, and
+    // exp(-h Â) of the dense output where a sample falls a rounding error short of a step end.
+    EXPECT_LE(stepper.work().propagator_exponentials, 8) << "h " << h;
     err.push_back(max_error(log.x, ref));
   }
   ode_exact_test::expect_order_five(err, "frozen A");

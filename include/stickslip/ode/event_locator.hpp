@@ -166,5 +166,50 @@ RootBracket<Scalar> illinois_root(Phi&& phi, Scalar lo, Scalar flo, Scalar hi, S
   return r;
 }
 
+/// Move a root `first` found on a method's dense output to the root of the method's own steps
+/// (EventState::Reintegrate): `step_to(tau)` re-takes the step from its start to tau and returns
+/// the guard's distance there. The two differ by the dense output's error, nearly constant near
+/// the root, so the steps' root lies near first - d(first) / slope (`slope`: the dense guard's
+/// distance rate at first): probe a little beyond it, then 4x wider, until the sign changes, and
+/// finish by Illinois inside the step's bracket [lo, hi] (d(lo) >= 0 > d(hi)). The last call of
+/// step_to is at the returned bracket's hi.
+template <class Scalar, class StepTo>
+RootBracket<Scalar> refine_root_on_steps(StepTo&& step_to, Scalar first, Scalar slope, Scalar lo,
+                                         Scalar d_lo, Scalar hi, Scalar d_hi, Scalar tol) {
+  Scalar stepped_to = first;
+  auto probe = [&](Scalar tau) {
+    stepped_to = tau;
+    return step_to(tau);
+  };
+  auto narrow = [&](Scalar tau, Scalar d) {  // keep [lo, hi] a bracket: d(lo) >= 0 > d(hi)
+    if (d >= Scalar(0)) {
+      lo = tau;
+      d_lo = d;
+    } else {
+      hi = tau;
+      d_hi = d;
+    }
+  };
+  const Scalar d_first = probe(first);
+  narrow(first, d_first);
+  if (slope < Scalar(0)) {
+    // Bracket the steps' root next to first - d_first / slope (a little beyond it, then 4x
+    // wider), so that the root finding starts on a bracket of the size of the offset.
+    const Scalar towards = d_first >= Scalar(0) ? Scalar(1) : Scalar(-1);
+    using std::abs;
+    Scalar reach = abs(d_first / slope) * Scalar(1.01) + tol;
+    for (int k = 0; k < 6; ++k, reach *= Scalar(4)) {
+      const Scalar at = first + towards * reach;
+      if (!(at > lo && at < hi)) break;
+      const Scalar d = probe(at);
+      narrow(at, d);
+      if ((d < Scalar(0)) == (towards > Scalar(0))) break;  // the sign changed: [lo, hi] brackets
+    }
+  }
+  const auto br = illinois_root(probe, lo, d_lo, hi, d_hi, tol);
+  if (stepped_to != br.hi) probe(br.hi);
+  return br;
+}
+
 }  // namespace detail
 }  // namespace stickslip

@@ -49,7 +49,9 @@ namespace stickslip {
 /// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
 /// delta in modes with guards; the linear part is kept frozen while the remainder does not limit
 /// the step (refresh_error; the system's `version` tells whether A_m changed at a refresh), and
-/// steps of one length reuse their stage propagators.
+/// steps of one length reuse their stage propagators. Samples and event location inside a Lawson
+/// step use its dense output (Dormand-Prince's order-4 continuous extension in the frame of Â),
+/// and event_state Reintegrate moves the located root onto re-taken steps of the method.
 ///
 /// Events: a guard fires when it crosses at a grid point (GuardMonitor semantics, as in
 /// HybridStepper), or when the cubic Hermite interpolant of its value and slope between two
@@ -61,8 +63,8 @@ namespace stickslip {
 /// gives them (LinearPart::Gx ...), else from a central difference along the exact flow.
 ///
 /// Options used: output_interval, event_time_tolerance, guard_zero_tolerance, the Zeno guard,
-/// max_steps, max_step, and (inexact modes) the step control. fixed_step and event_location are
-/// ignored. Work counters beyond StepperStats: work().
+/// max_steps, max_step, and (inexact modes) the step control and event_state. fixed_step and
+/// event_location are ignored. Work counters beyond StepperStats: work().
 template <class System>
 class ExactLinearStepper {
   static_assert(is_hybrid_system_v<System>,
@@ -233,6 +235,21 @@ class ExactLinearStepper {
                        Scalar db, Scalar sb, Bracket& out, StepperStats& st);
   // Earliest event in [t_, t1]; on true, xe_ holds the exact state at the returned time te_.
   bool find_event(const Mode& m, Scalar t1, StepperStats& st);
+  // Inexact modes: y at tau in [t_, t_ + step_h_] on the dense output of the accepted Lawson step
+  // into ys_ (built at its first use, before any trial step); false where it is not usable
+  // (LawsonDormandPrince::dense_usable), then trial steps are re-taken from t_.
+  bool dense_point(Scalar tau);
+  // Inexact modes: a Lawson step re-taken from (t_, y_) to tau into ys_ (rs_: the remainder
+  // there); its error estimate, NaN where the remainder is not finite.
+  Scalar trial_step(const Mode& m, Scalar tau, StepperStats& st) {
+    return lawson_.step(
+        flow_, [&](Scalar tt, const Vector& y, Vector& out) { return remainder(m, tt, y, out, st); },
+        t_, y_, r_, tau - t_, ys_, rs_, opt_.rtol, opt_.atol, work_);
+  }
+  // Inexact modes, EventState::Reintegrate: the root `first` of guard i on the dense output moved
+  // to the root of trial steps from t_ (detail::refine_root_on_steps); xe_, gt_ and the returned
+  // time are those of the trial step at the bracket end past the guard.
+  Scalar refine_on_steps(const Mode& m, Eigen::Index i, Scalar first, Scalar t1, StepperStats& st);
 
   template <class Observer>
   bool emit_samples(Observer& obs, const Mode& m, Scalar upto, Scalar t1, StepperStats& st);
@@ -258,6 +275,10 @@ class ExactLinearStepper {
   Scalar t_ = 0, te_ = 0, t0_ = 0, delta_ = 0;
   Eigen::Index nx_ = 0, nq_ = 0;
   long next_sample_ = 0;
+  // Dense output of the accepted Lawson step [t_, t_ + step_h_].
+  enum class Dense { Unknown, Ready, Unusable };
+  Dense dense_ = Dense::Unusable;
+  Scalar step_h_ = 0;
   bool linear_ = false, exact_ = false, affine_ = false, guarded_ = false;
   // Exact modes: affine guards on y (ghat_, gdot_ = ghat_ Â), closed-form quadratures (forms_:
   // the mode gives them; w_grid_ for the grid step; phi_out_, w_out_ for the output interval),
@@ -631,11 +652,10 @@ bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, unsigned 
       if (slopes) st_.noalias() = gdot_ * ys_;
       return detail::all_finite(xs_) && detail::all_finite(gt_);
     }
-  } else {
-    const Scalar err = lawson_.step(
-        flow_, [&](Scalar tt, const Vector& y, Vector& out) { return remainder(m, tt, y, out, st); },
-        t_, y_, r_, tau - t_, ys_, rs_, opt_.rtol, opt_.atol, work_);
-    if (std::isnan(err)) return false;
+  } else if (dense_point(tau)) {
+    if (slopes && !remainder(m, tau, ys_, rs_, st)) return false;
+  } else if (std::isnan(trial_step(m, tau, st))) {
+    return false;
   }
   xs_ = ys_.head(nx_);
   if (!detail::all_finite(xs_)) return false;
@@ -755,6 +775,8 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
   if (first >= t1) {
     xe_ = x1_;
     eval_guards(m, t1, xe_, gt_, st);
+  } else if (!exact_ && dense_ == Dense::Ready && opt_.event_state == EventState::Reintegrate) {
+    te_ = refine_on_steps(m, first_guard, first, t1, st);
   } else {
     eval_point(m, first, kQuadratures | kGuards | kSystemGuards, st);
     xe_ = xs_;
@@ -767,6 +789,43 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
   for (Eigen::Index i = 0; i < ng; ++i)
     if (monitor_.crossed(i, gt_[i]) || roots_[i] <= first + tol) triggered_.push_back(i);
   return true;
+}
+
+template <class System>
+bool ExactLinearStepper<System>::dense_point(Scalar tau) {
+  if (dense_ == Dense::Unknown) {
+    dense_ = lawson_.dense_usable(flow_, step_h_) ? Dense::Ready : Dense::Unusable;
+    if (dense_ == Dense::Ready) lawson_.prepare_dense(flow_, step_h_, y_, r_, r1_, work_);
+  }
+  if (dense_ != Dense::Ready) return false;
+  lawson_.dense(flow_, (tau - t_) / step_h_, ys_, work_);
+  flow_.set_clock(tau, ys_);
+  ++work_.dense_outputs;
+  return true;
+}
+
+template <class System>
+auto ExactLinearStepper<System>::refine_on_steps(const Mode& m, Eigen::Index i, Scalar first,
+                                                 Scalar t1, StepperStats& st) -> Scalar {
+  const Scalar tol = opt_.event_time_tolerance;
+  auto dense_distance = [&](Scalar tc) {
+    if (!eval_point(m, tc, kGuards | kSystemGuards, st)) return std::numeric_limits<Scalar>::quiet_NaN();
+    return monitor_.distance(i, gt_[i]);
+  };
+  // Slope of the dense output's guard at first (before trial steps: they use the stage vectors).
+  const Scalar w = std::min(first - t_, std::max(Scalar(16) * tol, Scalar(1e-6) * step_h_));
+  const Scalar slope = (dense_distance(first) - dense_distance(first - w)) / w;
+  auto step_to = [&](Scalar tau) {
+    const Scalar err = trial_step(m, tau, st);
+    xe_ = ys_.head(nx_);
+    if (std::isnan(err) || !detail::all_finite(xe_)) return -std::numeric_limits<Scalar>::infinity();
+    eval_guards(m, tau, xe_, gt_, st);
+    ++work_.event_reintegrations;
+    return monitor_.distance(i, gt_[i]);
+  };
+  return detail::refine_root_on_steps(step_to, first, slope, t_, monitor_.distance(i, ga_[i]), t1,
+                                      monitor_.distance(i, gb_[i]), tol)
+      .hi;
 }
 
 template <class System>
@@ -927,8 +986,13 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       return finish(r, Status::NonFiniteState, t_, x_, mode,
                     "state became non-finite " + detail::at_time(t1));
     ++st.accepted_steps;
-    if (exact_) ++work_.exact_steps;
-    else ++work_.exponential_steps;
+    if (exact_) {
+      ++work_.exact_steps;
+    } else {
+      ++work_.exponential_steps;
+      step_h_ = h;
+      dense_ = Dense::Unknown;
+    }
 
     bool event = false;
     if (guarded_ && closed_form_guards()) {
@@ -968,6 +1032,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       for (Eigen::Index i : triggered_) immediate = immediate || monitor_.disarmed(i);
       t_ = te_;
       x_ = xe_;
+      dense_ = Dense::Unusable;
       const Mode from = mode;
       TransitionAction action = sys_.transition(mode, triggered_, t_, x_);
       ++st.events;
@@ -991,6 +1056,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
     t_ = t1;
     x_ = x1_;
     y_.swap(y1_);
+    dense_ = Dense::Unusable;
     if (guarded_) {
       ga_.swap(gb_);
       sa_.swap(sb_);

@@ -319,41 +319,15 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
     return monitor_.distance(first_guard, gt_[first_guard]);
   };
   const Scalar slope = (dense_distance(first) - dense_distance(first - w)) / w;
-  Scalar stepped_to = first;
   auto step_to = [&](Scalar tau) {
     core_.step(sys_, m, t, x_, f_, tau - t, xe_, fe_, opt_.rtol, opt_.atol, st);
     eval_guards(m, tau, xe_, gt_, st);
-    stepped_to = tau;
     return monitor_.distance(first_guard, gt_[first_guard]);
   };
-  const Scalar d_first = step_to(first);
-  Scalar lo = t, d_lo = monitor_.distance(first_guard, ga_[first_guard]);
-  Scalar hi = t1, d_hi = monitor_.distance(first_guard, gb_[first_guard]);
-  auto narrow = [&](Scalar tau, Scalar d) {  // keep [lo, hi] a bracket: d(lo) >= 0 > d(hi)
-    if (d >= Scalar(0)) {
-      lo = tau;
-      d_lo = d;
-    } else {
-      hi = tau;
-      d_hi = d;
-    }
-  };
-  narrow(first, d_first);
-  if (slope < Scalar(0)) {
-    // Bracket the step's root next to first - d_first / slope (a little beyond it, then 4x
-    // wider), so that the root finding starts on a bracket of the size of the offset.
-    const Scalar towards = d_first >= Scalar(0) ? Scalar(1) : Scalar(-1);
-    Scalar reach = std::abs(d_first / slope) * Scalar(1.01) + tol;
-    for (int k = 0; k < 6; ++k, reach *= Scalar(4)) {
-      const Scalar probe = first + towards * reach;
-      if (!(probe > lo && probe < hi)) break;
-      const Scalar d = step_to(probe);
-      narrow(probe, d);
-      if ((d < Scalar(0)) == (towards > Scalar(0))) break;  // the sign changed: [lo, hi] brackets
-    }
-  }
-  const auto br = detail::illinois_root(step_to, lo, d_lo, hi, d_hi, tol);
-  if (stepped_to != br.hi) step_to(br.hi);  // (re-stepping to t1 reproduces x1 exactly)
+  // (re-stepping to t1 reproduces x1 exactly)
+  const auto br = detail::refine_root_on_steps(
+      step_to, first, slope, t, monitor_.distance(first_guard, ga_[first_guard]), t1,
+      monitor_.distance(first_guard, gb_[first_guard]), tol);
   // Fired: every guard crossed at the handed state, and every guard whose dense-output root lies
   // within the event time tolerance of the first one (guards that cross together, such as those
   // of two mirror-image contacts, fire together although round-off leaves one of them a hair

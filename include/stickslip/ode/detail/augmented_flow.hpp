@@ -40,6 +40,8 @@ struct ExactStepperStats {
   long long_steps = 0;           ///< exact steps of several grid steps (guard-rate bound)
   long linear_part_refreshes = 0;  ///< refreshes of a frozen linear part in inexact modes
   long mode_cache_hits = 0;      ///< modes whose propagators came from the mode cache
+  long dense_outputs = 0;        ///< points taken from a Lawson step's dense output
+  long event_reintegrations = 0;  ///< trial steps re-taken to refine an event (Reintegrate)
 };
 
 namespace detail {
@@ -77,6 +79,7 @@ class AugmentedFlow {
       a_.swap(build_);
       ladder_k_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
+      balance();
       slot_ = -1;
       for (std::size_t i = 0; i < cache_.size() && i < cache_size_; ++i) {
         Entry& e = cache_[i];
@@ -85,6 +88,7 @@ class AugmentedFlow {
         ladder_k_ = e.ladder_k;
         base_ = e.base;
         rate_ = e.rate;
+        decay_ = e.decay;
         slot_ = static_cast<int>(i);
         restored = true;
         ++st.mode_cache_hits;
@@ -102,11 +106,17 @@ class AugmentedFlow {
     omega_ = lp.omega;
     if (rate_stale) {
       rate_ = 0;
+      decay_ = 0;
       if (n > 0) {
         eig_.compute(lp.A, false);
         ++st.eigen_decompositions;
-        if (eig_.info() == Eigen::Success) rate_ = eig_.eigenvalues().cwiseAbs().maxCoeff();
-        else rate_ = lp.A.cwiseAbs().rowwise().sum().maxCoeff();  // a bound on |lambda|
+        if (eig_.info() == Eigen::Success) {
+          rate_ = eig_.eigenvalues().cwiseAbs().maxCoeff();
+          decay_ = std::max(Scalar(0), -eig_.eigenvalues().real().minCoeff());
+        } else {
+          rate_ = lp.A.cwiseAbs().rowwise().sum().maxCoeff();  // a bound on |lambda|
+          decay_ = rate_;
+        }
       }
       version_ = lp.version;
       rate_valid_ = true;
@@ -127,6 +137,10 @@ class AugmentedFlow {
 
   /// max(|lambda(A_m)|, w_k): the fastest rate (rad per time unit) of the mode's solutions.
   Scalar fastest_rate() const noexcept { return fastest_; }
+
+  /// max(0, -Re lambda(A_m)): the fastest decay of the mode's solutions, i.e. the growth rate of
+  /// exp(-Â tau) (the clock block is a rotation).
+  Scalar decay_rate() const noexcept { return decay_; }
 
   /// y = (x, 1, cos w_1 t, sin w_1 t, ...).
   template <class X>
@@ -158,8 +172,8 @@ class AugmentedFlow {
   }
 
   /// Prepare exp(Â tau) for any tau on a binary ladder of base `base` (> 0, finite):
-  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||Â||_1 base 2^-K <= 1/2; Phi_0 and Phi_K by
-  /// Padé approximation with scaling and squaring (MatrixFunctions), the others by squaring. Kept
+  /// Phi_k = exp(Â base 2^-k), k = 0 .. K, with ||B||_1 base 2^-K <= 2^-ladder_tail_bits (B: the
+  /// balanced Â, see expm); Phi_0 and Phi_K by expm, the others by squaring. Kept
   /// while Â and base do not change; with `keep`, also in the mode cache for a later mode with
   /// the same Â.
   void prepare(Scalar base, ExactStepperStats& st, bool keep = true) {
@@ -170,20 +184,16 @@ class AugmentedFlow {
     if (ladder_k_ >= 0 && base == base_) return;
     using std::ceil;
     using std::log2;
-    const int K = std::max(0, static_cast<int>(ceil(log2(Scalar(2) * norm1_ * base))));
+    const int K = std::max(
+        0, static_cast<int>(ceil(log2(std::ldexp(bnorm1_ * base, ladder_tail_bits)))));
     ladder_.resize(static_cast<std::size_t>(K) + 1);
-    build_ = a_ * (base / std::pow(Scalar(2), Scalar(K)));
-    ladder_[static_cast<std::size_t>(K)] = build_.exp();
-    ++st.propagator_exponentials;
+    expm(base / std::pow(Scalar(2), Scalar(K)), ladder_[static_cast<std::size_t>(K)], st);
     for (int k = K; k > 1; --k) {
       const auto ku = static_cast<std::size_t>(k);
       ladder_[ku - 1].noalias() = ladder_[ku] * ladder_[ku];
     }
-    if (K > 0) {  // the grid propagator, used most, directly (no round-off of K squarings)
-      build_ = a_ * base;
-      ladder_[0] = build_.exp();
-      ++st.propagator_exponentials;
-    }
+    if (K > 0)  // the grid propagator, used most, directly (no round-off of K squarings)
+      expm(base, ladder_[0], st);
     base_ = base;
     ladder_k_ = K;
     if (keep && cache_size_ > 0) {  // for a later mode with the same Â (round robin)
@@ -196,6 +206,7 @@ class AugmentedFlow {
       e.ladder_k = K;
       e.base = base;
       e.rate = rate_;
+      e.decay = decay_;
       ++e.stamp;
     }
   }
@@ -228,9 +239,7 @@ class AugmentedFlow {
     const auto nq = static_cast<Eigen::Index>(forms.size());
     w.setZero(nq * d, d);
     if (nq == 0) {
-      build_ = a_ * tau;
-      phi = build_.exp();
-      ++st.propagator_exponentials;
+      expm(tau, phi, st);
       return;
     }
     for (Eigen::Index j = 0; j < nq; ++j) {
@@ -244,13 +253,32 @@ class AugmentedFlow {
       qh.block(0, nx_, n, c) = tau * q.topRightCorner(n, c);
       qh.block(nx_, 0, c, n) = tau * q.bottomLeftCorner(c, n);
       qh.bottomRightCorner(c, c) = tau * q.bottomRightCorner(c, c);
+      // Balanced as in expm: the blocks hold Â and Âᵀ, as badly scaled as Â.
+      balance_in_place(big_, big_scale_);
       big_exp_ = big_.exp();
+      big_exp_ = big_scale_.asDiagonal() * big_exp_ * big_scale_.cwiseInverse().asDiagonal();
       ++st.propagator_exponentials;
       if (j == 0) phi = big_exp_.bottomRightCorner(d, d);
       w.middleRows(j * d, d).noalias() =
           big_exp_.bottomRightCorner(d, d).transpose() * big_exp_.topRightCorner(d, d);
     }
   }
+
+  /// out = exp(Â tau) by Padé with scaling and squaring (MatrixFunctions) on the balanced
+  /// generator: exp(Â tau) = D exp(B tau) D^-1, B = D^-1 Â D (see balance()), where ||B|| ~ the
+  /// spectral radius of Â rather than ||Â|| (modal coordinates: ||Â||_1 ~ w_max^2 against
+  /// w_max), so that the approximant needs few or no squarings. D is a power of 2 per component:
+  /// the similarity is exact in floating point.
+  void expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
+    build_ = bal_ * tau;
+    out = build_.exp();
+    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    ++st.propagator_exponentials;
+  }
+
+  /// The ladder's finest step leaves ||B|| tau <= 2^-ladder_tail_bits for the Taylor tail of expv:
+  /// ~5 terms there against ~K/2 ladder products on the way (the balance of the two costs).
+  static constexpr int ladder_tail_bits = 8;
 
   /// True when prepare() built a ladder (Â != 0 and a finite base).
   bool has_ladder() const noexcept { return ladder_k_ >= 0; }
@@ -263,7 +291,7 @@ class AugmentedFlow {
 
   /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
   /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
-  /// without a ladder, s Taylor sub-steps with ||Â||_1 tau / s <= 1.
+  /// without a ladder, s Taylor sub-steps with ||B||_1 tau / s <= 1 (B: the balanced Â).
   void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
     if (!(tau > 0) || !(norm1_ > 0)) return;
     if (ladder_k_ >= 0) {
@@ -283,7 +311,7 @@ class AugmentedFlow {
       return;
     }
     using std::ceil;
-    const Scalar s_real = std::max(Scalar(1), ceil(norm1_ * tau));
+    const Scalar s_real = std::max(Scalar(1), ceil(bnorm1_ * tau));
     const Scalar dt = tau / s_real;
     for (long i = 0; i < static_cast<long>(s_real); ++i) taylor(dt, v, st);
   }
@@ -294,18 +322,61 @@ class AugmentedFlow {
     v.swap(prod_);
     ++st.matvecs;
   }
-  // v <- sum_k (Â dt)^k / k! v until the term is below the unit round-off relative to the sum.
+  // v <- sum_k (Â dt)^k / k! v, in the balanced coordinates w = D^-1 v (terms (B dt)^k / k! w),
+  // until the term is below the unit round-off relative to the sum.
   void taylor(Scalar dt, Vector& v, ExactStepperStats& st) {
     if (!(dt > 0)) return;
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    v.array() /= scale_.array();
     term_ = v;
     for (int k = 1; k <= 40; ++k) {
-      prod_.noalias() = a_ * term_;
+      prod_.noalias() = bal_ * term_;
       ++st.matvecs;
       term_ = (dt / Scalar(k)) * prod_;
       v += term_;
       if (term_.template lpNorm<Eigen::Infinity>() <= eps * v.template lpNorm<Eigen::Infinity>())
         break;
+    }
+    v.array() *= scale_.array();
+  }
+
+  // B = D^-1 Â D with D = diag(scale_), powers of 2, chosen so that each component's row and
+  // column (off the diagonal) have comparable 1-norms (Parlett & Reinsch, Numer. Math. 13, 1969,
+  // the balancing of LAPACK's gebal without permutations); bnorm1_ = ||B||_1.
+  void balance() {
+    bal_ = a_;
+    balance_in_place(bal_, scale_);
+    bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
+  }
+  // m <- D^-1 m D (see balance()), the powers of 2 of D into scale.
+  static void balance_in_place(Matrix& m, Vector& scale) {
+    const Eigen::Index d = m.rows();
+    scale.setOnes(d);
+    for (int sweep = 0; sweep < 32; ++sweep) {
+      bool done = true;
+      for (Eigen::Index i = 0; i < d; ++i) {
+        Scalar c = m.col(i).cwiseAbs().sum() - std::abs(m(i, i));
+        Scalar r = m.row(i).cwiseAbs().sum() - std::abs(m(i, i));
+        if (!(c > 0) || !(r > 0)) continue;
+        const Scalar total = c + r;
+        Scalar f = 1;
+        while (c < r / 2) {
+          c *= 2;
+          r /= 2;
+          f *= 2;
+        }
+        while (c >= r * 2) {
+          c /= 2;
+          r *= 2;
+          f /= 2;
+        }
+        if (c + r >= Scalar(0.95) * total) continue;
+        done = false;
+        scale[i] *= f;
+        m.col(i) *= f;
+        m.row(i) /= f;
+      }
+      if (done) break;
     }
   }
 
@@ -313,20 +384,21 @@ class AugmentedFlow {
     Matrix a;
     std::vector<Matrix> ladder;
     int ladder_k = -1;
-    Scalar base = 0, rate = 0;
+    Scalar base = 0, rate = 0, decay = 0;
     std::uint64_t stamp = 0;
   };
   std::vector<Entry> cache_;
   std::size_t cache_size_ = 8, next_slot_ = 0;
   int slot_ = -1;
   bool last_restored_ = false;
-  Matrix a_, build_, big_, big_exp_;
+  Matrix a_, bal_, build_, big_, big_exp_;
+  Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;
   std::vector<Scalar> omega_;
   Eigen::EigenSolver<Matrix> eig_;
   Eigen::Index nx_ = 0, n_ = 0;
-  Scalar norm1_ = 0, rate_ = 0, fastest_ = 0, base_ = 0;
+  Scalar norm1_ = 0, bnorm1_ = 0, rate_ = 0, decay_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
   std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;

@@ -12,7 +12,18 @@
 ///
 /// The linear part is exact for any h (no stability limit from Â); the order is 5 for a smooth
 /// remainder (Hochbruck & Ostermann, Acta Numerica 19, 2010, Sec. 2.2), error estimate O(h^5).
+///
+/// Dense output: Dormand-Prince's continuous extension of order 4 (Hairer, Norsett & Wanner I,
+/// Sec. II.6, dopri5's CONTD5) applied to w, with K_j = exp(-c_j h Â) R_j, written back in y:
+///
+///     y(t + theta h) = exp(theta h Â) v(theta),   v(theta) = y_0 + h sum_j b_j(theta) K_j,
+///
+/// local error O(h^5) uniformly in theta in [0, 1] for a smooth remainder (the error of w's
+/// extension, carried by exp(theta h Â)). The K_j come from the stages carried to c = 1 by one
+/// backward propagator, K_j = exp(-h Â) exp((1 - c_j) h Â) R_j: usable where exp(-h Â) stays
+/// bounded (h times the largest decay rate of Â small; see dense_usable).
 
+#include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/detail/augmented_flow.hpp>
 #include <stickslip/ode/detail/step_control.hpp>
 
@@ -38,9 +49,18 @@ class LawsonDormandPrince {
   /// Size the stage vectors (allocates only when dim grows).
   void initialize(Eigen::Index dim) {
     for (Vector& v : k_) v.resize(dim);
-    p_.resize(dim);
-    ys_.resize(dim);
-    prod_.resize(dim);
+    for (Vector* v : {&p_, &ys_, &prod_, &w0_, &dd_, &q3_, &q4_, &q5_}) v->resize(dim);
+  }
+
+  /// Largest h d (d: the largest decay rate -Re lambda of Â) for which the dense output is used:
+  /// exp(-h Â) then amplifies by at most e^2 ~ 7.4 (round-off of the stages, relative to the
+  /// solution); beyond it the caller re-takes trial steps.
+  static constexpr double max_backward_growth = 2.0;
+
+  /// True when the dense output of a step of size h on the flow's Â is usable (see
+  /// max_backward_growth).
+  static bool dense_usable(const AugmentedFlow<Scalar>& flow, Scalar h) {
+    return h * flow.decay_rate() <= Scalar(max_backward_growth);
   }
 
   /// One step of size h from (t, y0) with r0 = R(t, y0): writes y1 and r1 = R(t + h, y1), returns
@@ -80,9 +100,7 @@ class LawsonDormandPrince {
           flow.generation() == last_generation_) {
         for (int i = 1; i < 6; ++i) {
           const auto iu = static_cast<std::size_t>(i);
-          work_ = flow.generator() * (c(cs[iu] - cs[iu - 1]) * h);
-          stage_[iu - 1] = work_.exp();
-          ++st.propagator_exponentials;
+          flow.expm(c(cs[iu] - cs[iu - 1]) * h, stage_[iu - 1], st);
         }
         cached_h_ = h;
         cached_generation_ = flow.generation();
@@ -91,6 +109,7 @@ class LawsonDormandPrince {
       last_h_ = h;
       last_generation_ = flow.generation();
     }
+    stages_of_run_step_ = reuse;
     p_ = y0;
     k_[0] = r0;
     for (int i = 1; i < 6; ++i) {
@@ -121,6 +140,50 @@ class LawsonDormandPrince {
     return weighted_rms(ys_.head(nx), y0.head(nx), y1.head(nx), rtol, atol);
   }
 
+  /// Build the dense output of the last step (taken with `reuse`, no trial step since: the stage
+  /// vectors must still be that step's) of size h from (y0, r0), r1 = R at its end; see the file
+  /// comment.
+  /// Five products with exp(-h Â), computed by Padé once per step length and Â. Call only where
+  /// dense_usable(flow, h).
+  void prepare_dense(AugmentedFlow<Scalar>& flow, Scalar h, const Vector& y0,
+                     const Vector& r0, const Vector& r1, ExactStepperStats& st) {
+    STICKSLIP_ASSERT(stages_of_run_step_ && "LawsonDormandPrince: dense output of a trial step");
+    const auto c = [](double v) { return static_cast<Scalar>(v); };
+    using std::abs;
+    if (!(abs(h - back_h_) <= Scalar(1e-12) * h && flow.generation() == back_generation_)) {
+      flow.expm(-h, back_, st);
+      back_h_ = h;
+      back_generation_ = flow.generation();
+    }
+    // K_j in the frame of the step start (K_1 = r0 exactly; K_2 has no weight below).
+    for (std::size_t j : {2u, 3u, 4u, 5u}) carry(back_, k_[j], st);
+    prod_.noalias() = back_ * r1;
+    ++st.matvecs;
+    const Vector& k7 = prod_;
+    // Hairer's form: v = w0 + theta (D + (1 - theta) (q3 + theta (q4 + (1 - theta) q5))) with
+    // D = w1 - w0 = h sum b_j K_j, q3 = h K_1 - D, q4 = D - h K_7 - q3, q5 = h sum d_j K_j.
+    w0_ = y0;
+    dd_.noalias() = h * (c(35.0 / 384) * r0 + c(500.0 / 1113) * k_[2] + c(125.0 / 192) * k_[3] -
+                         c(2187.0 / 6784) * k_[4] + c(11.0 / 84) * k_[5]);
+    q3_.noalias() = h * r0 - dd_;
+    q4_.noalias() = dd_ - h * k7 - q3_;
+    q5_.noalias() = h * (c(-12715105075.0 / 11282082432.0) * r0 +
+                         c(87487479700.0 / 32700410799.0) * k_[2] +
+                         c(-10690763975.0 / 1880347072.0) * k_[3] +
+                         c(701980252875.0 / 199316789632.0) * k_[4] +
+                         c(-1453857185.0 / 822651844.0) * k_[5] + c(69997945.0 / 29380423.0) * k7);
+    dense_h_ = h;
+    stages_of_run_step_ = false;  // the stages are now in the start frame
+  }
+
+  /// y(t + theta h) of the step of prepare_dense into out, theta in [0, 1]: v(theta) and one
+  /// exp(theta h Â) v by the flow's ladder.
+  void dense(AugmentedFlow<Scalar>& flow, Scalar theta, Vector& out, ExactStepperStats& st) const {
+    const Scalar s = Scalar(1) - theta;
+    out.noalias() = w0_ + theta * (dd_ + s * (q3_ + theta * (q4_ + s * q5_)));
+    flow.expv(theta * dense_h_, out, st);
+  }
+
  private:
   void carry(const Matrix& e, Vector& v, ExactStepperStats& st) {
     prod_.noalias() = e * v;
@@ -133,7 +196,12 @@ class LawsonDormandPrince {
   // Stage propagators exp((c_i - c_{i-1}) h Â) of cached_h_ on Â of cached_generation_, and the
   // h and Â of the last step with reuse.
   std::array<Matrix, 5> stage_;
-  Matrix work_;
+  // Dense output: exp(-back_h_ Â) of back_generation_, and the vectors of Hairer's form.
+  Matrix back_;
+  Vector w0_, dd_, q3_, q4_, q5_;
+  Scalar back_h_ = 0, dense_h_ = 0;
+  std::uint64_t back_generation_ = 0;
+  bool stages_of_run_step_ = false;
   Scalar cached_h_ = 0, last_h_ = 0;
   std::uint64_t cached_generation_ = 0, last_generation_ = 0;
 };
