@@ -7,6 +7,7 @@
 # this list costs 0, and a name that no longer exists is ignored by CTest.
 set_tests_properties("SteadyStateBlade.OrbitEqualsTheLongTransientAtThreePreloads" PROPERTIES COST 42)
 set_tests_properties("SteadyStateContinuation.LinearTwoDofFrequencyResponseIsTheReceptance" PROPERTIES COST 30)
+set_tests_properties("OptimalPreload.MinMaxAmplitudeOfAMaxwellDamperIsTheFixedPoint" PROPERTIES COST 13)  # helper's measurement
 set_tests_properties("MixedLaws.ThreeDampersOnThreeMembersPassTheEnergyAudit" PROPERTIES COST 16)
 set_tests_properties("ExactLinearStepperFrozen.StiffMovingPointRefreshesOnlyWhenTheRemainderLimitsTheStep" PROPERTIES COST 10)
 set_tests_properties("EnergyAudit.ResidualAtIntegrationErrorAndShrinksWithTolerance" PROPERTIES COST 7)
