@@ -748,6 +748,11 @@ struct PyContinuationPoint {
   PyOrbit orbit;
 };
 
+/// The C++ point as PyContinuationPoint (no Python objects).
+PyContinuationPoint to_py(const ContinuationPoint<System>& pt) {
+  return PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)};
+}
+
 /// What continue_orbits returns.
 struct PyContinuation {
   ContinuationStatus status = ContinuationStatus::Completed;
@@ -791,7 +796,7 @@ struct ContinuationCallbacks {
   }
   void point(const ContinuationPoint<System>& pt) const {
     py::gil_scoped_acquire gil;
-    (*on_point)(PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)});
+    (*on_point)(to_py(pt));
   }
 };
 
@@ -918,8 +923,7 @@ void bind_steady_state(py::module_& m) {
         const auto result = cont.run(md, t0, x, p0);
         out.status = result.status;
         out.message = result.message;
-        for (const auto& pt : result.points)
-          out.points.push_back(PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)});
+        for (const auto& pt : result.points) out.points.push_back(to_py(pt));
         return out;
       },
       py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,

@@ -324,7 +324,7 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
     eval_guards(m, tau, xe_, gt_, st);
     return monitor_.distance(first_guard, gt_[first_guard]);
   };
-  // (re-stepping to t1 reproduces x1 exactly)
+  // The last step it takes is to br.hi (re-stepping to t1 reproduces x1 exactly).
   const auto br = detail::refine_root_on_steps(
       step_to, first, slope, t, monitor_.distance(first_guard, ga_[first_guard]), t1,
       monitor_.distance(first_guard, gb_[first_guard]), tol);

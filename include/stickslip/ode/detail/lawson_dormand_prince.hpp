@@ -31,6 +31,7 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -89,25 +90,17 @@ class LawsonDormandPrince {
                                              22.0 / 525,       -1.0 / 40};
     const Eigen::Index nx = flow.state_size();
     bool cached = false;
-    // Lengths equal to 1e-12 relative share the propagators: the difference is round-off of t
-    // (steps cut to end on an output sample differ in the last bits).
-    const auto same = [h](Scalar other) {
-      using std::abs;
-      return abs(h - other) <= Scalar(1e-12) * h;
-    };
     if (reuse) {
-      if (!(same(cached_h_) && flow.generation() == cached_generation_) && same(last_h_) &&
-          flow.generation() == last_generation_) {
+      const PropagatorKey key{h, flow.generation()};
+      if (!stages_key_.matches(key) && last_key_.matches(key)) {
         for (int i = 1; i < 6; ++i) {
           const auto iu = static_cast<std::size_t>(i);
           flow.expm(c(cs[iu] - cs[iu - 1]) * h, stage_[iu - 1], st);
         }
-        cached_h_ = h;
-        cached_generation_ = flow.generation();
+        stages_key_ = key;
       }
-      cached = same(cached_h_) && flow.generation() == cached_generation_;
-      last_h_ = h;
-      last_generation_ = flow.generation();
+      cached = stages_key_.matches(key);
+      last_key_ = key;
     }
     stages_of_run_step_ = reuse;
     p_ = y0;
@@ -149,11 +142,10 @@ class LawsonDormandPrince {
                      const Vector& r0, const Vector& r1, ExactStepperStats& st) {
     STICKSLIP_ASSERT(stages_of_run_step_ && "LawsonDormandPrince: dense output of a trial step");
     const auto c = [](double v) { return static_cast<Scalar>(v); };
-    using std::abs;
-    if (!(abs(h - back_h_) <= Scalar(1e-12) * h && flow.generation() == back_generation_)) {
+    const PropagatorKey key{h, flow.generation()};
+    if (!back_key_.matches(key)) {
       flow.expm(-h, back_, st);
-      back_h_ = h;
-      back_generation_ = flow.generation();
+      back_key_ = key;
     }
     // K_j in the frame of the step start (K_1 = r0 exactly; K_2 has no weight below).
     for (std::size_t j : {2u, 3u, 4u, 5u}) carry(back_, k_[j], st);
@@ -193,17 +185,27 @@ class LawsonDormandPrince {
 
   std::array<Vector, 6> k_;
   Vector p_, ys_, prod_;
-  // Stage propagators exp((c_i - c_{i-1}) h Â) of cached_h_ on Â of cached_generation_, and the
-  // h and Â of the last step with reuse.
+  // A propagator's step length and the generation of the Â it was computed on. Lengths equal to
+  // 1e-12 relative share a propagator: the difference is round-off of t (steps cut to end on an
+  // output sample differ in the last bits).
+  struct PropagatorKey {
+    Scalar h = 0;
+    std::uint64_t generation = 0;
+    bool matches(const PropagatorKey& other) const {
+      using std::abs;
+      return generation == other.generation && abs(other.h - h) <= Scalar(1e-12) * other.h;
+    }
+  };
+  // Stage propagators exp((c_i - c_{i-1}) h Â) of stages_key_, and the key of the last step with
+  // reuse.
   std::array<Matrix, 5> stage_;
-  // Dense output: exp(-back_h_ Â) of back_generation_, and the vectors of Hairer's form.
+  PropagatorKey stages_key_, last_key_;
+  // Dense output: exp(-h Â) of back_key_, and the vectors of Hairer's form.
   Matrix back_;
+  PropagatorKey back_key_;
   Vector w0_, dd_, q3_, q4_, q5_;
-  Scalar back_h_ = 0, dense_h_ = 0;
-  std::uint64_t back_generation_ = 0;
+  Scalar dense_h_ = 0;
   bool stages_of_run_step_ = false;
-  Scalar cached_h_ = 0, last_h_ = 0;
-  std::uint64_t cached_generation_ = 0, last_generation_ = 0;
 };
 
 }  // namespace detail
