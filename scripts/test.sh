@@ -10,7 +10,6 @@
 # -DSTICKSLIP_BUILD_BENCHMARKS=ON); set STICKSLIP_TEST_BENCHMARKS=1 to build them here too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/deps.sh test
 jobs=$(nproc 2>/dev/null || echo 2)
 
 run_suite() {  # name, extra cmake args...
@@ -20,12 +19,20 @@ run_suite() {  # name, extra cmake args...
   # make recursion); a build tree configured earlier keeps its generator.
   local generator=()
   if [ ! -f "build/${name}/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+  local t0 t1 t2 t3
+  t0=$(date +%s)
   cmake -S . -B "build/${name}" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_WARNINGS_AS_ERRORS=ON "$@"
+  t1=$(date +%s)
   cmake --build "build/${name}" -j "${jobs}"
+  t2=$(date +%s)
   (cd "build/${name}" && ctest --output-on-failure -j "${jobs}")
+  t3=$(date +%s)
+  echo "stickslip: ${name} suite: configure $((t1 - t0)) s, build $((t2 - t1)) s, tests $((t3 - t2)) s"
 }
 
 start=$(date +%s)
+scripts/deps.sh test
+echo "stickslip: packages checked in $(( $(date +%s) - start )) s"
 benchmarks=OFF
 if [ "${STICKSLIP_TEST_BENCHMARKS:-0}" = "1" ]; then benchmarks=ON; fi
 run_suite test "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DSTICKSLIP_BUILD_BENCHMARKS=${benchmarks} \

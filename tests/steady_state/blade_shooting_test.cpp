@@ -25,10 +25,18 @@ constexpr double kPi = 3.14159265358979323846;
 // sizes) under ASan + UBSan, while the finite-difference monodromy of the slipping orbits is
 // plain model runs, which the other sanitizer tests cover (with 0.2 and 1 N the test took 140 s
 // there, with 1 N 70 s).
+// There the transient is also a third as long at three times the damping (20 periods at 15 %
+// instead of 60 at 5 %: the same decay exp(-zeta w1 t) ~ 1e-9 of the start amplitude, and the
+// 26 N orbit stays stuck all period, a fortiori with less response): the transient was about half
+// of the test's 37 s there.
 #if defined(STICKSLIP_SANITIZED)
 constexpr double kPreloads[] = {26.0};
+constexpr double kDampingRatio = 0.15;
+constexpr int kTransientPeriods = 20;
 #else
 constexpr double kPreloads[] = {0.2, 1.0, 26.0};
+constexpr double kDampingRatio = 0.05;
+constexpr int kTransientPeriods = 60;
 #endif
 
 TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
@@ -36,7 +44,7 @@ TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
     SCOPED_TRACE(::testing::Message() << "N0 " << preload);
     blade::BladeParameters p;
     p.preload = preload;
-    p.damping_ratio = 0.05;
+    p.damping_ratio = kDampingRatio;
     blade::BladeScene scene = blade::make_blade_scene(p);
     System& sys = *scene.system;
     const double T = 2 * kPi / p.force_omega;
@@ -44,10 +52,10 @@ TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
     System::Mode mode = sys.requested_mode();
     ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
     // The transient: 60 periods (1.9 s); the slowest mode decays as exp(-zeta w1 t), w1 ~ 230 rad/s:
-    // ~1e-9 of the start amplitude left.
+    // ~1e-9 of the start amplitude left (under the sanitizers see kTransientPeriods).
     const stickslip::StepperOptions<double> tight = stickslip::ShootingOptions<double>::tight_stepper();
     stickslip::HybridStepper<System, stickslip::DormandPrince54> stepper(sys, tight);
-    const double t_a = 60 * T;
+    const double t_a = kTransientPeriods * T;
     const auto transient = stepper.integrate(mode, 0.0, x0, t_a);
     ASSERT_TRUE(transient.ok()) << transient.message;
     const auto next = stepper.integrate(transient.mode, t_a, transient.x, t_a + T);
