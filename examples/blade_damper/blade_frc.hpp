@@ -323,6 +323,9 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // linearly: 4 iterations are a normal step here, not a hint to shrink it.
   co.fast_iterations = 4;
   co.max_corrector_iterations = 10;
+  // Where the stick fraction changes (an event appears) the corrector can land on another
+  // orbit, several steps away (seen at 1 N near 16 Hz): reject such a point and halve the step.
+  co.max_corrector_distance = 2;
   stickslip::Continuation<System> cont(
       *scene.system,
       [&scene, unit](System& sys, double par) {
