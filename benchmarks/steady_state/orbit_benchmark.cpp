@@ -2,12 +2,14 @@
 // frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
 // state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
 // this thread:
-//   orbit_benchmark [--preloads a,b] [--frc-points n] [--out file.json]
+//   orbit_benchmark [--preloads a,b] [--frc-points n] [--quick] [--out file.json]
 // Per preload (5 % modal damping, 200 rad/s, energy audit off, the example's shooting options):
 // one plain period and one variational period (steps, RHS evaluations); shooting from rest and
 // from transients of 10 and 60 periods, with the finite-difference and the variational
 // monodromy; the transient from rest until x(kT) equals the shot orbit's x0 to the shooting
-// tolerance (periods and CPU); and, with --frc-points n > 0, a frequency branch of n points
+// tolerance (periods and CPU); the variational period with Phi out of the error control and the
+// finite-difference monodromy, both monodromies against the latter; --quick skips the shootings
+// after 10 periods and from rest; and, with --frc-points n > 0, a frequency branch of n points
 // from 190 rad/s (its CPU per point, extrapolated to 200 points).
 #include "blade_damper/blade_frc.hpp"
 
@@ -67,11 +69,32 @@ Timed shoot_after(blade::BladeScene& scene, int periods, bool fd, Timed& with_tr
   return t;
 }
 
+// The blade's system without its jacobian() (has_jacobian_v false): the variational run then
+// takes central differences of rhs for df/dx, as before lever (a) - its baseline in this run.
+struct WithoutJacobian {
+  using Scalar = System::Scalar;
+  using State = System::State;
+  using Mode = System::Mode;
+  System sys;
+  void rhs(const Mode& m, double t, const State& x, State& dxdt) { sys.rhs(m, t, x, dxdt); }
+  Eigen::Index num_guards(const Mode& m) const { return sys.num_guards(m); }
+  void guards(const Mode& m, double t, const State& x, System::GuardVector& g) { sys.guards(m, t, x, g); }
+  stickslip::CrossingDirection guard_direction(const Mode& m, Eigen::Index i) const {
+    return sys.guard_direction(m, i);
+  }
+  stickslip::TransitionAction transition(Mode& m, const stickslip::TriggeredGuards& w, double t, State& x) {
+    return sys.transition(m, w, t, x);
+  }
+};
+static_assert(!stickslip::has_jacobian_v<WithoutJacobian>, "the baseline must not see the jacobian");
+static_assert(stickslip::has_jacobian_v<System>, "FrictionDampedSystem provides jacobian()");
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::vector<double> preloads{1.0, 26.0};
   int frc_points = 0;
+  bool quick = false;  // skip the shootings after 10 periods and from rest (the slow ones)
   std::string out = "orbit_benchmark.json";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -81,10 +104,12 @@ int main(int argc, char** argv) {
       for (std::string v; std::getline(ss, v, ',');) preloads.push_back(std::stod(v));
     } else if (a == "--frc-points" && i + 1 < argc) {
       frc_points = std::stoi(argv[++i]);
+    } else if (a == "--quick") {
+      quick = true;
     } else if (a == "--out" && i + 1 < argc) {
       out = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--out file.json]\n");
+      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--quick] [--out file.json]\n");
       return 2;
     }
   }
@@ -104,13 +129,15 @@ int main(int argc, char** argv) {
     Timed v60t, v10t, v0t, f60t, f10t;
     const Timed v60 = shoot_after(scene, 60, false, v60t, &orbit);
     const Timed f60 = shoot_after(scene, 60, true, f60t);
-    const Timed v10 = shoot_after(scene, 10, false, v10t);
-    const Timed f10 = shoot_after(scene, 10, true, f10t);
-    const Timed v0 = shoot_after(scene, 0, false, v0t);
+    const Timed skipped{0, 0, false, "skipped (--quick)"};
+    const Timed v10 = quick ? skipped : shoot_after(scene, 10, false, v10t);
+    const Timed f10 = quick ? skipped : shoot_after(scene, 10, true, f10t);
+    const Timed v0 = quick ? skipped : shoot_after(scene, 0, false, v0t);
     std::printf("  shooting after 60 / 10 / 0 periods: variational %.3f / %.3f / %.3f s, finite differences %.3f / %.3f s\n",
                 v60.cpu, v10.cpu, v0.cpu, f60.cpu, f10.cpu);
     // One plain and one variational period of the orbit.
     auto opt = blade::blade_shooting_options(sys, false);
+    opt.control_sensitivities = true;  // the example's options leave Phi out: measured below
     double c0 = thread_cpu_seconds();
     const auto plain = stickslip::run_period(sys, orbit.mode, 0.0, orbit.x0, T, opt, false);
     const double plain_cpu = thread_cpu_seconds() - c0;
@@ -120,6 +147,41 @@ int main(int argc, char** argv) {
     std::printf("  one period: plain %.4f s (%ld steps, %ld RHS), variational %.4f s (%ld steps, %ld RHS)\n", plain_cpu,
                 plain.stats.accepted_steps, plain.stats.rhs_evaluations, var_cpu, var.stats.accepted_steps,
                 var.stats.rhs_evaluations);
+    // Lever (b): Phi out of the error control; both variational monodromies against the
+    // finite-difference one (an independent computation: 2n plain periods).
+    auto free_opt = opt;
+    free_opt.control_sensitivities = false;
+    c0 = thread_cpu_seconds();
+    const auto var_free = stickslip::run_period(sys, orbit.mode, 0.0, orbit.x0, T, free_opt, true);
+    const double var_free_cpu = thread_cpu_seconds() - c0;
+    auto fd_opt = blade::blade_shooting_options(sys, true);
+    c0 = thread_cpu_seconds();
+    const auto fdm = stickslip::run_period(sys, orbit.mode, 0.0, orbit.x0, T, fd_opt, true);
+    const double fd_cpu = thread_cpu_seconds() - c0;
+    // Lever (a): the same variational period without the model's jacobian (central differences).
+    WithoutJacobian bare{sys};
+    c0 = thread_cpu_seconds();
+    const auto var_bare = stickslip::run_period(bare, orbit.mode, 0.0, orbit.x0, T, opt, true);
+    const double var_bare_cpu = thread_cpu_seconds() - c0;
+    auto bare_free_opt = free_opt;
+    c0 = thread_cpu_seconds();
+    const auto var_bare_free = stickslip::run_period(bare, orbit.mode, 0.0, orbit.x0, T, bare_free_opt, true);
+    const double var_bare_free_cpu = thread_cpu_seconds() - c0;
+    std::printf("  variational period without the model's jacobian (differences): %.4f s (%ld steps), Phi free %.4f s "
+                "(%ld steps)\n",
+                var_bare_cpu, var_bare.stats.accepted_steps, var_bare_free_cpu, var_bare_free.stats.accepted_steps);
+    const auto P = static_cast<Eigen::Index>(opt.periodic.size());
+    const auto block_diff = [&](const auto& a) {
+      return (a.monodromy.topLeftCorner(P, P) - fdm.monodromy.topLeftCorner(P, P)).cwiseAbs().maxCoeff() /
+             std::max(1.0, fdm.monodromy.topLeftCorner(P, P).cwiseAbs().maxCoeff());
+    };
+    const double diff_var = var.ok() && fdm.ok() ? block_diff(var) : NAN;
+    const double diff_free = var_free.ok() && fdm.ok() ? block_diff(var_free) : NAN;
+    std::printf("  variational period, Phi out of the error control: %.4f s (%ld steps, %ld RHS); finite-difference "
+                "monodromy %.4f s; max |M - M_fd| / max(1, |M_fd|) over the periodic block: %.2e (Phi controlled), "
+                "%.2e (Phi free)\n",
+                var_free_cpu, var_free.stats.accepted_steps, var_free.stats.rhs_evaluations, fd_cpu, diff_var,
+                diff_free);
     // The transient from rest until x(kT) is the orbit's x0 to the shooting tolerance.
     System::State x = sys.initial_state();
     System::Mode mode = sys.requested_mode();
@@ -152,7 +214,13 @@ int main(int argc, char** argv) {
       << "},\n     \"plain_period\": {\"cpu_s\": " << blade::jnum(plain_cpu) << ", \"steps\": " << plain.stats.accepted_steps
       << ", \"rhs\": " << plain.stats.rhs_evaluations << "}, \"variational_period\": {\"cpu_s\": " << blade::jnum(var_cpu)
       << ", \"steps\": " << var.stats.accepted_steps << ", \"rhs\": " << var.stats.rhs_evaluations
-      << "},\n     \"transient_to_orbit\": {\"periods\": " << periods << ", \"cpu_s\": " << blade::jnum(transient_cpu)
+      << ", \"monodromy_vs_fd\": " << blade::jnum(diff_var) << "},\n     \"variational_period_phi_free\": {\"cpu_s\": "
+      << blade::jnum(var_free_cpu) << ", \"steps\": " << var_free.stats.accepted_steps << ", \"rhs\": "
+      << var_free.stats.rhs_evaluations << ", \"monodromy_vs_fd\": " << blade::jnum(diff_free)
+      << "}, \"fd_monodromy_period\": {\"cpu_s\": " << blade::jnum(fd_cpu) << "},\n     "
+      << "\"variational_period_without_jacobian\": {\"cpu_s\": " << blade::jnum(var_bare_cpu) << ", \"steps\": "
+      << var_bare.stats.accepted_steps << ", \"phi_free_cpu_s\": " << blade::jnum(var_bare_free_cpu)
+      << ", \"phi_free_steps\": " << var_bare_free.stats.accepted_steps << "},\n     \"transient_to_orbit\": {\"periods\": " << periods << ", \"cpu_s\": " << blade::jnum(transient_cpu)
       << ", \"final_difference\": " << blade::jnum(diff) << ", \"ratio_to_shooting_after_60_with_transient\": "
       << blade::jnum(transient_cpu / v60t.cpu) << "}";
     if (frc_points > 0) {

@@ -215,9 +215,15 @@ struct FrcSettings {
   int max_points = 300;         ///< per branch
   int linear_points = 400;      ///< points of each linear curve
   int transient_periods = 60;   ///< before shooting the start orbit at f_lo
-  /// The monodromy by finite differences (2 n plain periods; on this scene ~3x cheaper than the
-  /// variational run, docs/steady_state.md "Cost").
-  bool finite_difference_monodromy = true;
+  /// The monodromy by finite differences (2 n plain periods) instead of the variational run
+  /// (with the model's jacobian and Phi out of the error control: as cheap at 1 N, 3x cheaper
+  /// stuck, and accurate where the differences' h = 1e-6 is 1 % of the state; docs/steady_state.md
+  /// "Cost").
+  bool finite_difference_monodromy = false;
+  /// Newton iterations of the start orbit's shooting (ShootingOptions::max_iterations). From a
+  /// transient's end Newton converges in 1-4 runs or stalls (near a grazing): 30 (the library's
+  /// default) cost 40-50 s per failing orbit here; 8, as the optimal-preload search.
+  int max_newton_iterations = 8;
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -235,6 +241,9 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
   opt.periodic = stickslip::ShootingOptions<double>::first(sys.contact_offset() >= 0 ? sys.contact_offset()
                                                                                      : sys.linear_size());
   if (fd) opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+  // The variational monodromy on the steps of the plain run (Phi out of the error control):
+  // 4.5-5.6x fewer steps, multipliers unchanged to 8 digits at 1 N (docs/steady_state.md "Cost").
+  opt.control_sensitivities = false;
   // The runs' global error over a period of ~8500 steps at rtol 1e-10 is ~1e-9 of the state:
   // a residual of 1e-9 (the default) is at that floor and stalls the corrector; 1e-7 is far
   // below what a design plot can show.
@@ -285,10 +294,12 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   p.force_omega = w_lo;
   *scene.system = make_blade_system(scene, p);
   scene.parameters = p;
-  // The finite-difference monodromy where the dampers slide; the variational one for a branch
-  // that starts stuck all period (a family: its multipliers 1 are exact there, the differences'
-  // noise ~rtol / fd_step hides them; docs/steady_state.md "The blade scene").
+  // The variational monodromy; with finite_difference_monodromy, differences where the dampers
+  // slide but still the variational one for a branch that starts stuck all period (a family:
+  // its multipliers 1 are exact there, the differences' noise ~rtol / fd_step hides them;
+  // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
+  opt.max_iterations = s.max_newton_iterations;
   auto start = blade_start_orbit(scene, s.transient_periods, opt);
   if (opt.monodromy == stickslip::MonodromyMethod::FiniteDifference && (!start.ok() || start.events.empty())) {
     opt.monodromy = stickslip::MonodromyMethod::Variational;
@@ -312,6 +323,9 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // linearly: 4 iterations are a normal step here, not a hint to shrink it.
   co.fast_iterations = 4;
   co.max_corrector_iterations = 10;
+  // Where the stick fraction changes (an event appears) the corrector can land on another
+  // orbit, several steps away (seen at 1 N near 16 Hz): reject such a point and halve the step.
+  co.max_corrector_distance = 2;
   stickslip::Continuation<System> cont(
       *scene.system,
       [&scene, unit](System& sys, double par) {

@@ -3,8 +3,8 @@
 /// \brief `blade_damper --optimise-preload lo:hi`: the preload N0* that minimises the blade's
 /// resonant tip amplitude A(N0) = max over the excitation frequency of the periodic orbit's tip
 /// amplitude (half peak-to-peak), by resonance_search.hpp's min-max search: a coarse log grid of
-/// N0, then golden sections in log N0 and, at each N0, in the frequency between the frictionless
-/// and the all-stuck lowest resonances. Each amplitude is one orbit found by shooting from the
+/// N0, then golden sections in log N0 and, at each N0, a coarse frequency grid and a golden
+/// section between the frictionless and the all-stuck lowest resonances. Each amplitude is one orbit found by shooting from the
 /// end of a transient (or, when shooting fails, a longer transient's last period).
 /// docs/steady_state.md.
 
@@ -30,6 +30,9 @@ struct OptimalSettings {
   int grid = 6;                  ///< coarse log-spaced preloads before the golden section
   double log_tol = 0.02;         ///< golden section in ln N0 to this fraction of ln(n_hi / n_lo)
   double omega_tol = 0.01;       ///< golden section in frequency to this fraction of the bracket
+  /// Uniform frequencies over each bracket before the golden section in frequency (a response
+  /// with two peaks, or a flat top, fools a golden section over the whole bracket).
+  int omega_grid = 7;
   double bracket_margin = 0.05;  ///< bracket [f_free (1 - m), f_stuck (1 + m)]
   int transient_periods = 60;    ///< periods of the transient from rest before shooting
 };
@@ -129,15 +132,17 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
     const double f_stuck = limits[0].natural_frequencies_hz().front(), f_free = limits[1].natural_frequencies_hz().front();
     return std::make_pair(2 * M_PI * f_free * (1 - s.bracket_margin), 2 * M_PI * f_stuck * (1 + s.bracket_margin));
   };
-  std::printf("optimal: preload %g..%g N (grid %d, then golden sections), damping %.3g\n", s.n_lo, s.n_hi, s.grid,
-              p.damping_ratio);
+  std::printf("optimal: preload %g..%g N (grid %d, then golden sections; per preload %d frequencies, then a "
+              "golden section), damping %.3g\n",
+              s.n_lo, s.n_hi, s.grid, s.omega_grid, p.damping_ratio);
   const MinMax best = min_max_amplitude(amplitude, bracket, std::log(s.n_lo), std::log(s.n_hi), s.log_tol, s.omega_tol,
                                         s.grid, [&](double log_n0, double omega, double a) {
                                           peaks.push_back({std::exp(log_n0), omega / (2 * M_PI), a});
                                           std::printf("optimal: N0 %g N: resonant tip amplitude %.4e m at %.3f Hz\n",
                                                       std::exp(log_n0), a, omega / (2 * M_PI));
                                           std::fflush(stdout);
-                                        });
+                                        },
+                                        s.omega_grid);
   const double cpu = stickslip::detail::thread_cpu_seconds() - cpu0;
   {
     std::ofstream o(out / "optimal.csv");
@@ -156,7 +161,7 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
   j << "{\n  \"ok\": " << (best.parameter.ok ? "true" : "false") << ", \"message\": \"" << json_escape(best.parameter.message)
     << "\",\n  \"optimal_preload_N\": " << jnum(n_star) << ", \"resonant_tip_amplitude_m\": " << jnum(best.parameter.value)
     << ", \"peak_frequency_hz\": " << jnum(best.omega / (2 * M_PI)) << ",\n  \"preload_range_N\": [" << jnum(s.n_lo) << ", "
-    << jnum(s.n_hi) << "], \"grid\": " << s.grid << ", \"log_tol\": " << jnum(s.log_tol) << ", \"omega_tol\": "
+    << jnum(s.n_hi) << "], \"grid\": " << s.grid << ", \"omega_grid\": " << s.omega_grid << ", \"log_tol\": " << jnum(s.log_tol) << ", \"omega_tol\": "
     << jnum(s.omega_tol) << ", \"damping_ratio\": " << jnum(p.damping_ratio) << ", \"force_N\": " << jnum(p.force)
     << ",\n  \"peaks\": " << peaks.size() << ", \"orbits\": " << orbits.size() << ", \"cpu_s\": " << jnum(cpu) << "\n}\n";
   if (!best.parameter.ok) {

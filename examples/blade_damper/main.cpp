@@ -97,8 +97,11 @@ Usage: blade_damper [options]
                          and frictionless linear curves (OUT/frc.csv, frc_linear.csv,
                          frc.json; docs/steady_state.md); modal damping 0.05 unless --damping
   --frc-points n         (after --frc) points per branch at most (default 300)
-  --frc-variational      (after --frc) the variational monodromy throughout (default: finite
-                         differences, variational for a branch that starts stuck all period)
+  --frc-newton n         (after --frc) Newton iterations of each branch's start orbit
+                         (default 8)
+  --frc-variational      (after --frc) the variational monodromy (the default)
+  --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
+                         starts with events (variational for one stuck all period)
   --optimise-preload lo:hi  the preload in lo..hi N minimising the resonant tip amplitude
                          (max over frequency of the periodic orbit's): log grid + golden
                          sections (OUT/optimal.csv, optimal_peaks.csv, optimal.json;
@@ -178,9 +181,16 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--frc-points") {
       if (!c.frc) throw std::invalid_argument("--frc-points must follow --frc");
       c.frc->max_points = std::stoi(need(i));
+    } else if (a == "--frc-newton") {
+      if (!c.frc) throw std::invalid_argument("--frc-newton must follow --frc");
+      c.frc->max_newton_iterations = std::stoi(need(i));
+      if (c.frc->max_newton_iterations <= 0) throw std::invalid_argument("--frc-newton must be > 0");
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;
+    } else if (a == "--frc-finite-difference") {
+      if (!c.frc) throw std::invalid_argument("--frc-finite-difference must follow --frc");
+      c.frc->finite_difference_monodromy = true;
     } else if (a == "--optimise-preload") {
       c.optimal = blade::parse_optimal_range(need(i));
     } else if (a == "--threads") {

@@ -39,8 +39,9 @@ SingleDofParameters parameters(double ratio) {
 }
 
 stickslip::Continuation<Oscillator> ratio_continuation(Oscillator& sys, double lo, double hi,
-                                                       int direction) {
+                                                       int direction, double max_corrector_distance = 0) {
   stickslip::ContinuationOptions<double> co;
+  co.max_corrector_distance = max_corrector_distance;
   co.parameter_min = lo;
   co.parameter_max = hi;
   co.initial_step = 0.01;
@@ -110,6 +111,41 @@ TEST(SteadyStateFamily, BranchInTheFrictionRatioEntersTheStuckFamily) {
   EXPECT_GE(sliding, 3);
   EXPECT_GE(stick_slip, 3);
   EXPECT_GE(stuck, 2);
+}
+
+// The largest distance |y_k - y_{k-1}| / ds_k between consecutive points (y = (x, x', r), the
+// periodic components and the parameter; ds_k the step that produced point k).
+double largest_relative_jump(const stickslip::ContinuationResult<Oscillator>& branch) {
+  double worst = 0;
+  for (std::size_t k = 1; k < branch.points.size(); ++k) {
+    const auto& a = branch.points[k - 1];
+    const auto& b = branch.points[k];
+    const Eigen::Vector3d ya(a.orbit.x0[0], a.orbit.x0[1], a.parameter), yb(b.orbit.x0[0], b.orbit.x0[1], b.parameter);
+    worst = std::max(worst, (yb - ya).norm() / b.step);
+  }
+  return worst;
+}
+
+// max_corrector_distance: the branch of the test above jumps onto the stuck family (the
+// arclength hyperplane cuts the 2-D family and the corrector lands anywhere on the cut: from
+// r ~ 0.92 to 1.3, many steps away). With the check at 2 ds every accepted point lies within
+// ds (prediction) + 2 ds (correction) of the previous one, by the triangle inequality.
+TEST(SteadyStateFamily, CorrectorDistanceCheckRejectsTheJumpOntoTheFamily) {
+  const double r0 = 0.3;
+  const DenHartogOrbit ref(kMass, kStiffness, kForce, kOmega, kMu * normal_force(r0), kMu * normal_force(r0));
+  ASSERT_TRUE(ref.valid);
+  const double t0 = ref.t1 + ref.T / 4;
+  double x = 0, v = 0;
+  ref.state(t0, x, v);
+  Oscillator free_sys(parameters(r0), Contact(Law(kMu, kMu)));
+  auto unchecked = ratio_continuation(free_sys, 0.2, 1.5, +1);
+  const auto jumping = unchecked.run(S::SlipPositive, t0, Eigen::Vector4d(x, v, 0, 0), r0);
+  EXPECT_GT(largest_relative_jump(jumping), 3.0);  // the jump the check is for
+  Oscillator sys(parameters(r0), Contact(Law(kMu, kMu)));
+  auto checked = ratio_continuation(sys, 0.2, 1.5, +1, 2.0);
+  const auto branch = checked.run(S::SlipPositive, t0, Eigen::Vector4d(x, v, 0, 0), r0);
+  ASSERT_GE(branch.points.size(), 2u) << to_string(branch.status) << ": " << branch.message;
+  EXPECT_LE(largest_relative_jump(branch), 3.0 + 1e-9);
 }
 
 // Down from an orbit of the family (x = 0 stuck, r = 1.25) to the family's edge r = 1: the start

@@ -17,6 +17,8 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 namespace optimal_preload_test {
 namespace {
@@ -99,6 +101,43 @@ TEST(OptimalPreload, GoldenMinimumStopsAtANonFiniteValue) {
   const auto q = blade::golden_minimum([](double x) { return (x - 0.3) * (x - 0.3); }, 0, 1, 1e-8);
   EXPECT_TRUE(q.ok);
   EXPECT_NEAR(q.x, 0.3, 1e-8);  // the bracket's width
+}
+
+// A response with two peaks (closed form): a(p, omega) = (1 + p) g(omega; 0.2, 0.1) +
+// (2 - p) g(omega; 0.85, 0.05), g a Gaussian bump of height 1. The bumps are so far apart (the
+// other's tail is below e^-42 at each top) that max over omega a = max(1 + p, 2 - p), whose
+// minimum over p in [0, 1] is 1.5 at p = 0.5. A golden section over omega in [0, 1] compares
+// a(0.382) (the wide bump's flank, ~0.04) with a(0.618) (~e^-17) and climbs the wide, lower
+// bump: it reports A(p) = 1 + p and p* = 0. The coarse frequency grid (7 points: 0.833 lies
+// on the narrow bump) finds the higher one.
+double two_peaks(double p, double omega) {
+  const auto bump = [](double w, double centre, double width) {
+    return std::exp(-((w - centre) / width) * ((w - centre) / width));
+  };
+  return (1 + p) * bump(omega, 0.2, 0.1) + (2 - p) * bump(omega, 0.85, 0.05);
+}
+
+TEST(OptimalPreload, CoarseFrequencyGridFindsTheHigherOfTwoPeaks) {
+  const auto bracket = [](double) { return std::make_pair(0.0, 1.0); };
+  const auto amplitude = [](double p, double omega) { return two_peaks(p, omega); };
+  // Brackets to 1e-4 of their width: the peak value to 2 (1e-4 / 0.05)^2 ~ 1e-5 (the narrow
+  // bump's curvature), p* to the golden section's 1e-4 (A is V-shaped with slopes +-1 there).
+  const blade::MinMax found = blade::min_max_amplitude(amplitude, bracket, 0.0, 1.0, 1e-4, 1e-4, 5, {}, 7);
+  ASSERT_TRUE(found.parameter.ok);
+  EXPECT_NEAR(found.parameter.x, 0.5, 2e-4);
+  EXPECT_NEAR(found.parameter.value, 1.5, 1e-3);
+  EXPECT_NEAR(found.omega, 0.85, 1e-3);
+  // The search without the frequency grid (the old one) is fooled: it never sees the narrow peak.
+  const blade::MinMax fooled = blade::min_max_amplitude(amplitude, bracket, 0.0, 1.0, 1e-4, 1e-4, 5, {}, 0);
+  EXPECT_LT(fooled.parameter.x, 0.01);
+  EXPECT_NEAR(fooled.omega, 0.2, 1e-3);
+}
+
+TEST(OptimalPreload, GridGoldenMinimumReportsANonFiniteGridValue) {
+  const auto e = blade::grid_golden_minimum(
+      [](double x) { return x > 0.6 ? std::numeric_limits<double>::infinity() : x; }, 0, 1, 1e-6, 6);
+  EXPECT_FALSE(e.ok);
+  EXPECT_NE(e.message.find("non-finite"), std::string::npos);
 }
 
 }  // namespace

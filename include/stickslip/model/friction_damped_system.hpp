@@ -526,6 +526,17 @@ class FrictionDampedSystem {
   /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
   bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
 
+  // ---- Jacobian df/dx (issue #21: the variational equations of shooting; has_jacobian_v) -------
+  /// J = df/dx of rhs() in mode `mode` at (t, x), state_size() x state_size(). Where the mode is
+  /// exact (linear_part: every damper stuck, or slipping or flying at a fixed contact under a
+  /// CoulombLaw, no time_function load) J_LL = A_m of linear_part, the audit rows are
+  /// d(z^T Q_j z)/dx_L = ((Q_j + Q_j^T) z)_L and the contact-coordinate columns X (frozen in A_m)
+  /// are central differences of rhs; elsewhere every column is a central difference,
+  /// (f(x + h e_j) - f(x - h e_j)) / 2h with h = 1e-6 max(1, |x_j|). J is NaN where the
+  /// evaluation at x is not finite. Allocates nothing once J and the work vectors have their
+  /// sizes. Throws std::invalid_argument on a wrong size of x or mode.
+  void jacobian(const Mode& mode, Scalar t, const State& x, Matrix& J);
+
 
  private:
   // Number of guards of damper i in mode: contact guards (from the contact component, incl.
@@ -1587,6 +1598,15 @@ class FrictionDampedSystem {
   std::uint64_t lp_version_ = 0;
   LinearPart<Scalar> lp_cache_;
 
+  // Jacobian (jacobian): the linear part of the mode, z of the audit forms, difference vectors.
+  LinearPart<Scalar> jac_lp_;
+  Vector jac_z_;
+  State jac_x_, jac_fp_, jac_fm_;
+  /// Column j of J by central differences of rhs (h = 1e-6 max(1, |x_j|)).
+  void jacobian_column(const Mode& mode, Scalar t, const State& x, Index j, Matrix& J);
+  /// True when linear_part's A_m is exact in `mode` (r_m = 0 with X frozen), as linear_part decides.
+  bool exact_mode(const Mode& mode) const;
+
   // Per damper: its contact point moves (ModelOptions::moving_contact and PointDamper::contact_point).
   std::vector<bool> moving_;
 
@@ -1959,6 +1979,76 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
   lp_f_.noalias() -= lp.A * x.head(linear_size());
   lp.b0 += lp_f_;
   return true;
+}
+
+// ---- Jacobian df/dx (issue #21) ----------------------------------------------------------------
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::exact_mode(const Mode& mode) const {
+  using std::isnan;
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (has_stick_[iu] && mode[i] == ContactState::Stick) continue;
+    if (moving_[iu]) return false;
+    if (mode[i] != ContactState::Separated && isnan(kinetic_constant_[iu])) return false;
+  }
+  return std::none_of(loads_.begin(), loads_.end(), [](const Load& l) { return bool(l.time_function); });
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian_column(const Mode& mode, Scalar t, const State& x, Index j,
+                                                                Matrix& J) {
+  using std::abs;
+  const Scalar h = Scalar(1e-6) * std::max(Scalar(1), abs(x[j]));
+  jac_x_ = x;
+  jac_x_[j] = x[j] + h;
+  rhs(mode, t, jac_x_, jac_fp_);
+  jac_x_[j] = x[j] - h;
+  rhs(mode, t, jac_x_, jac_fm_);
+  J.col(j) = (jac_fp_ - jac_fm_) / (Scalar(2) * h);
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scalar t, const State& x, Matrix& J) {
+  const Index N = state_size();
+  if (x.size() != N)
+    detail::throw_invalid("FrictionDampedSystem::jacobian", "x must have state_size() entries, size", x.size());
+  if (mode.size() != D_)
+    detail::throw_invalid("FrictionDampedSystem::jacobian", "mode must hold one state per damper, size", mode.size());
+  J.resize(N, N);
+  if (!exact_mode(mode)) {
+    for (Index j = 0; j < N; ++j) jacobian_column(mode, t, x, j, J);
+    return;
+  }
+  if (!linear_part(mode, t, x, jac_lp_)) {
+    J.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return;
+  }
+  STICKSLIP_ASSERT(jac_lp_.exact && "FrictionDampedSystem::jacobian: exact_mode disagrees with linear_part");
+  const Index P = linear_size();
+  J.setZero();
+  J.topLeftCorner(P, P) = jac_lp_.A;
+  if (jac_lp_.has_quadrature_forms()) {  // d(z^T Q z)/dz = (Q + Q^T) z, its first P entries
+    const Index K = static_cast<Index>(jac_lp_.omega.size());
+    jac_z_.resize(P + 1 + 2 * K);
+    jac_z_.head(P) = x.head(P);
+    jac_z_[P] = Scalar(1);
+    using std::cos;
+    using std::sin;
+    for (Index k = 0; k < K; ++k) {
+      const Scalar w = jac_lp_.omega[static_cast<std::size_t>(k)];
+      jac_z_[P + 1 + 2 * k] = cos(w * t);
+      jac_z_[P + 2 + 2 * k] = sin(w * t);
+    }
+    for (std::size_t q = 0; q < jac_lp_.quadrature_forms.size(); ++q) {
+      const Matrix& Q = jac_lp_.quadrature_forms[q];
+      auto row = J.row(P + static_cast<Index>(q)).head(P).transpose();
+      row.noalias() = Q.topRows(P) * jac_z_;
+      row.noalias() += Q.leftCols(P).transpose() * jac_z_;
+    }
+  }
+  if (options_.moving_contact)
+    for (Index i = 0; i < D_; ++i) jacobian_column(mode, t, x, contact_offset() + i, J);
 }
 
 // ---- separation: lift-off into flight, impacts, landings (docs/model.md "Separation") --------

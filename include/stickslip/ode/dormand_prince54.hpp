@@ -12,7 +12,9 @@ namespace stickslip {
 
 /// Method tag: Dormand-Prince 5(4) (J. R. Dormand, P. J. Prince, J. Comput. Appl. Math. 6, 1980),
 /// local extrapolation (the order-5 solution is propagated), FSAL: six new right-hand-side
-/// evaluations per step. Error estimate of order 4 drives the step (exponent 1/5). Dense output:
+/// evaluations per step. Error estimate of order 4 drives the step (exponent 1/5); over the first
+/// `sys.controlled_size()` components only when the system has that member (detail::error_norm).
+/// Dense output:
 /// Hairer's order-4 continuous extension (local error O(h^5)), built only when an event or an
 /// output sample needs it. The default method: non-stiff problems, tight tolerances.
 struct DormandPrince54 {
@@ -126,7 +128,7 @@ struct DormandPrince54 {
       xs.noalias() = h * (c(71.0 / 57600.0) * f0 - c(71.0 / 16695.0) * k3 +
                           c(71.0 / 1920.0) * k4 - c(17253.0 / 339200.0) * k5 +
                           c(22.0 / 525.0) * k6 - c(1.0 / 40.0) * f1);
-      return detail::weighted_rms(xs, x0, x1, rtol, atol);
+      return detail::error_norm(sys, xs, x0, x1, rtol, atol);
     }
 
     Stages k_;

@@ -33,6 +33,11 @@ struct ContinuationOptions {
   Scalar growth = Scalar(1.5);  ///< step growth after a fast corrector (a failure halves the step)
   /// Sign of the first parameter step: +1 towards parameter_max, -1 towards parameter_min.
   int direction = 1;
+  /// > 0: a corrected point farther than max_corrector_distance * ds from its prediction counts
+  /// as a failed step (the step halves): the corrector jumped to another orbit (a branch
+  /// switch at a kink of G, where the event sequence changes, or a far-off solution outside the
+  /// range). 0: no check (the default).
+  Scalar max_corrector_distance = 0;
 
   /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range.
   void validate(const std::string& where) const {
@@ -56,6 +61,7 @@ struct ContinuationOptions {
       detail::throw_invalid(where, "options.growth must be in [1, 4]", growth);
     if (direction != 1 && direction != -1)
       detail::throw_invalid(where, "options.direction must be +1 or -1", direction);
+    detail::require_non_negative(where, "options.max_corrector_distance", max_corrector_distance);
   }
 };
 
@@ -116,7 +122,8 @@ struct ContinuationResult {
 /// so the branch turns at folds.
 /// Step control: a corrector converged in <= fast_iterations grows ds by `growth` (up to
 /// max_step), one that needs more than half the allowed iterations halves it, a failure halves it
-/// and retries (down to min_step). The arclength norm is Euclidean in (x_P, p): scale the
+/// and retries (down to min_step); with max_corrector_distance > 0 a corrected point farther from
+/// its prediction than that many ds is a failure too. The arclength norm is Euclidean in (x_P, p): scale the
 /// parameter (or the states) so that both are of order one. t0 is kept along the branch; the
 /// start mode too, unless a start_mode() rule re-decides it from each iterate (needed when a
 /// switch of the orbit crosses t0 along the branch). The system is left at the
@@ -328,7 +335,17 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
     int iterations = 0;
     PeriodicOrbit<System> next;
     Mode mode_new = mode;
-    if (!correct(mode_new, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why)) {
+    bool ok = correct(mode_new, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why);
+    if (ok && opt_.max_corrector_distance > 0) {
+      const Scalar jump = (pack(x_new, p_new) - y_pred).norm();
+      if (jump > opt_.max_corrector_distance * ds) {
+        ok = false;
+        why = "the corrector landed " + detail::format_value(jump) + " from the prediction (more than " +
+              detail::format_value(opt_.max_corrector_distance) + " ds = " + detail::format_value(ds) +
+              "): another orbit";
+      }
+    }
+    if (!ok) {
       ds /= Scalar(2);
       if (ds < opt_.min_step) {
         set_(sys_, p);

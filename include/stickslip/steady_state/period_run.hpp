@@ -120,7 +120,7 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   obs.track(x0);
 
   if (monodromy && options.monodromy == MonodromyMethod::Variational) {
-    VariationalSystem<System> var(system, n, options.fd_step);
+    VariationalSystem<System> var(system, n, options.fd_step, options.control_sensitivities);
     HybridStepper<VariationalSystem<System>, DormandPrince54> stepper(var, so);
     const auto r = stepper.integrate(mode, t0, var.initial_state(x0), t0 + T, obs);
     run.status = r.status;

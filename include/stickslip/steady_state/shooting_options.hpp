@@ -44,6 +44,10 @@ struct ShootingOptions {
   int max_iterations = 30;
   /// How the monodromy (the Newton Jacobian and the Floquet multipliers) is computed.
   MonodromyMethod monodromy = MonodromyMethod::Variational;
+  /// Variational monodromy: true keeps the sensitivities Phi under the runs' error control (the
+  /// steps resolve x and Phi); false leaves them out (the steps of a plain run of x, Phi
+  /// integrated on them by the same Runge-Kutta formula: the usual choice of shooting codes).
+  bool control_sensitivities = true;
   /// Relative step h of the finite differences (monodromy, guard gradients, reset Jacobians,
   /// the parameter derivative of continuation): h_j = fd_step * max(1, |x_j|).
   Scalar fd_step = Scalar(1e-6);

@@ -81,9 +81,11 @@ class VariationalSystem {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
   /// Wraps `system` (kept by reference) with state size n; fd_step is the relative step of the
-  /// finite differences. Throws std::invalid_argument for n <= 0 or fd_step outside (0, 0.1).
-  VariationalSystem(System& system, Eigen::Index n, Scalar fd_step)
-      : sys_(system), n_(n), fd_(fd_step) {
+  /// finite differences. With control_sensitivities = false, Phi is left out of the step's error
+  /// control (controlled_size() = n: the steps are those of a plain run of x). Throws
+  /// std::invalid_argument for n <= 0 or fd_step outside (0, 0.1).
+  VariationalSystem(System& system, Eigen::Index n, Scalar fd_step, bool control_sensitivities = true)
+      : sys_(system), n_(n), fd_(fd_step), control_(control_sensitivities) {
     if (n <= 0) detail::throw_invalid("VariationalSystem", "n must be > 0", n);
     if (!(fd_step > 0 && fd_step < Scalar(0.1)))
       detail::throw_invalid("VariationalSystem", "fd_step must be in (0, 0.1)", fd_step);
@@ -108,6 +110,10 @@ class VariationalSystem {
   Eigen::Map<Matrix> sensitivity(State& X) const { return {X.data() + n_, n_, n_}; }
   /// Phi as a read-only view of the augmented state X.
   Eigen::Map<const Matrix> sensitivity(const State& X) const { return {X.data() + n_, n_, n_}; }
+
+  /// Number of leading components of [x; vec(Phi)] under the error control of an adaptive step
+  /// (DormandPrince54): all, or only x when the sensitivities are left out.
+  Eigen::Index controlled_size() const noexcept { return control_ ? n_ + n_ * n_ : n_; }
 
   /// Events whose guard was (nearly) tangent to the flow: S = R was used.
   long grazing_events() const { return grazing_; }
@@ -158,6 +164,7 @@ class VariationalSystem {
   std::optional<System> copy_;
   Eigen::Index n_;
   Scalar fd_;
+  bool control_;
   long grazing_ = 0;
   BaseState xb_, fb_, xp_, fp_, fm_, xm_, fminus_, fplus_, xr_;
   Matrix J_, R_, S_, tmp_;

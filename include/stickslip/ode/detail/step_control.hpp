@@ -30,6 +30,26 @@ EIGEN_ALWAYS_INLINE Scalar weighted_rms(const Eigen::MatrixBase<E>& err,
   return sqrt(sum / static_cast<Scalar>(err.size()));
 }
 
+template <class System, class = void>
+struct has_controlled_size : std::false_type {};
+template <class System>
+struct has_controlled_size<System, std::void_t<decltype(std::declval<const System&>().controlled_size())>>
+    : std::true_type {};
+
+/// The step's error norm: weighted_rms over the whole state, or over its first
+/// sys.controlled_size() components when the system declares that only those are under error
+/// control (VariationalSystem with the sensitivities left out: the usual choice of shooting codes).
+template <class System, class Scalar, class E, class A, class B>
+EIGEN_ALWAYS_INLINE Scalar error_norm(const System& sys, const Eigen::MatrixBase<E>& err,
+                                      const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b,
+                                      Scalar rtol, Scalar atol) {
+  if constexpr (has_controlled_size<System>::value) {
+    const Eigen::Index k = sys.controlled_size();
+    if (k < err.size()) return weighted_rms(err.head(k), a.head(k), b.head(k), rtol, atol);
+  }
+  return weighted_rms(err, a, b, rtol, atol);
+}
+
 template <class Core, class = void>
 struct has_new_mode : std::false_type {};
 template <class Core>
