@@ -1488,6 +1488,20 @@ class FrictionDampedSystem {
   /// The impact of separated damper i (gap = 0): frictional_impact with W from the member's
   /// impulse response; velocities updated, the loss booked; bounce or landing.
   bool impact(Mode& mode, Index i, Scalar t, State& x);
+  /// Gap acceleration g'' of separated damper i in flight at (mode, t, x):
+  ///   g'' = a^T q'' + 2 s_d V + c V^2 + slope V' - N0/m,  V' = x'' - b^T q'' - (psi_u'^T q') V,
+  /// with s_d = side psi_w'^T q', c = side psi_w''^T q at X (the terms in V with a moving contact
+  /// only: d^2/dt^2 of y = side psi_w(X(t))^T q(t) with X' = V, minus y_d'' = N0/m).
+  Scalar flight_gap_acceleration(const Mode& mode, Index i, Scalar t, const State& x);
+  /// Whether the rebound of separated damper i at gap rate v_after > 0 (state x just after the
+  /// bounce) stays inside the landing band: g'' < 0 and v_after^2 <= 2 |g''| kLandingBand L, i.e.
+  /// the flight's apex below kLandingBand L (docs/model.md "Separation", "The landing band").
+  bool rebound_within_band(const Mode& mode, Index i, Scalar t, const State& x, Scalar v_after);
+  /// Height of the landing band relative to the member length (1e-8 L: 4e-10 m on a 4 cm
+  /// platform): a bounce whose flight would not rise above it lands. Well above the stepper's
+  /// default guard_zero_tolerance (1e-12), by which a gap guard restarted at zero sinks at each
+  /// located impact (docs/model.md "Separation").
+  static constexpr double kLandingBand = 1e-8;
   /// response_ = the member's modal velocity jumps, response_x_ the dampers' x' jumps, for unit
   /// modal impulses impulse_dir_ (two columns), through the other dampers' contact rows.
   void impulse_response(const Mode& mode, const State& x);
@@ -2032,30 +2046,44 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   const Vec2 v(c.yd - x[yd], c.V);
   impulse_response(mode, x);
   const Mat2 W = inverse_effective_mass(s, m);
-  const NewtonImpact<Scalar> newton(d.restitution, d.landing_speed);
-  const FrictionalImpact<Scalar> hit = detail::with_law(d.law, [&](const auto& law) {
-    using L = std::decay_t<decltype(law)>;
-    if constexpr (L::has_stick_state) {
-      return frictional_impact(newton, law, W, v);
-    } else {  // a bounded friction force has no impulse: Newton's law alone, through W_nn
-      FrictionalImpact<Scalar> r;
-      const NormalImpact<Scalar> normal = newton.impact(v[0], W(0, 0));
-      r.impulse = Vec2(normal.impulse, Scalar(0));
-      r.velocity_after = v + W.col(0) * normal.impulse;
-      r.velocity_after[0] = normal.velocity_after;
-      r.energy_loss = normal.energy_loss;
-      r.lands = normal.lands;
-      r.state = slip_state(r.velocity_after[1]);
-      return r;
-    }
-  });
+  auto solve_impact = [&](const NewtonImpact<Scalar>& newton) {
+    return detail::with_law(d.law, [&](const auto& law) {
+      using L = std::decay_t<decltype(law)>;
+      if constexpr (L::has_stick_state) {
+        return frictional_impact(newton, law, W, v);
+      } else {  // a bounded friction force has no impulse: Newton's law alone, through W_nn
+        FrictionalImpact<Scalar> r;
+        const NormalImpact<Scalar> normal = newton.impact(v[0], W(0, 0));
+        r.impulse = Vec2(normal.impulse, Scalar(0));
+        r.velocity_after = v + W.col(0) * normal.impulse;
+        r.velocity_after[0] = normal.velocity_after;
+        r.energy_loss = normal.energy_loss;
+        r.lands = normal.lands;
+        r.state = slip_state(r.velocity_after[1]);
+        return r;
+      }
+    });
+  };
+  // The velocity jumps of an impulse L on the damper (and -L through the rows on the member).
+  auto apply = [&](const Vec2& L) {
+    x.segment(n_, n_) += response_ * L;
+    for (Index j = 0; j < D_; ++j)
+      if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
+    x[xd_offset() + i] += (s * L[0] + L[1]) / m;
+    x[yd] -= L[0] / m;
+  };
+  FrictionalImpact<Scalar> hit = solve_impact(NewtonImpact<Scalar>(d.restitution, d.landing_speed));
   if (!hit.resolved) return false;
+  apply(hit.impulse);
+  if (!hit.lands && rebound_within_band(mode, i, t, x, hit.velocity_after[0])) {
+    // A rebound too low to leave the landing band is a landing (docs/model.md "Separation"):
+    // the plastic impact (e = 0) in its place, i.e. the difference of the two impulses added.
+    const FrictionalImpact<Scalar> landing = solve_impact(NewtonImpact<Scalar>(Scalar(0), d.landing_speed));
+    if (!landing.resolved) return false;
+    apply(landing.impulse - hit.impulse);
+    hit = landing;
+  }
   const Vec2& L = hit.impulse;
-  x.segment(n_, n_) += response_ * L;
-  for (Index j = 0; j < D_; ++j)
-    if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
-  x[xd_offset() + i] += (s * L[0] + L[1]) / m;
-  x[yd] -= L[0] / m;
   if (audit_size() > 4) x[energy_offset() + 4] += hit.energy_loss;
   const ContactState to = hit.lands ? hit.state : ContactState::Separated;
   impacts_.push_back(ImpactEvent{t, i, L[0], L[1], v[0], hit.velocity_after[0], v[1], hit.velocity_after[1],
@@ -2065,6 +2093,34 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   if (to == ContactState::Stick) involved_.push_back(i);  // resolve() decides stick or slip
   cache_valid_ = false;
   return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::flight_gap_acceleration(const Mode& mode, Index i, Scalar t,
+                                                                         const State& x) -> Scalar {
+  STICKSLIP_ASSERT(mode[i] == ContactState::Separated);
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Damper& d = dampers_[iu];
+  const Evaluation& e = evaluate(mode, t, x);  // q'' with i in flight (no force of i on the member)
+  const Scalar pull = d.preload / d.effective_mass();
+  const auto qdd = modal(e.qdd);
+  if (!moving_[iu]) return qdd.dot(modal(C_.col(i))) - pull;  // a fixed point: y'' = a^T q''
+  evaluate_shapes(i, e.X[i]);
+  const auto& v = values_[iu];
+  const auto q = x.template segment<Modes>(0, n_);
+  const auto qd = x.template segment<Modes>(n_, n_);
+  const Scalar side = d.side, V = e.V[i];
+  const Scalar Vdot = e.xdd[i] - v.psi_u.dot(qdd) - v.dpsi_u.dot(qd) * V;
+  return side * (v.psi_w.dot(qdd) + Scalar(2) * v.dpsi_w.dot(qd) * V + v.ddpsi_w.dot(q) * V * V) + e.slope[i] * Vdot -
+         pull;
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::rebound_within_band(const Mode& mode, Index i, Scalar t,
+                                                                     const State& x, Scalar v_after) {
+  const Scalar a = flight_gap_acceleration(mode, i, t, x);
+  const Scalar band = Scalar(kLandingBand) * shapes_[static_cast<std::size_t>(damper_shape_[static_cast<std::size_t>(i)])].length();
+  return a < Scalar(0) && v_after * v_after <= Scalar(-2) * a * band;
 }
 
 template <class Scalar_, class Law_, int Modes>
