@@ -43,11 +43,7 @@ TEST(LandingBand, BouncesOnARigidPlateEndInALandingAtTheBand) {
   DamperStates mode(1, ContactState::Separated);
   ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
   const double E0 = sys.mechanical_energy(mode, 0.0, x);
-  RunOptions<double> run;
-  run.stepper.rtol = 1e-10;
-  run.stepper.atol = 1e-14;
-  run.stepper.output_interval = 1e-2;
-  const auto r = simulate(sys, mode, 0.0, x, 0.05, run);
+  const auto r = simulate(sys, mode, 0.0, x, 0.05, closed_form_run_options(1e-2));
   ASSERT_TRUE(r.ok()) << r.message;
   EXPECT_EQ(r.mode[0], ContactState::Stick);
 

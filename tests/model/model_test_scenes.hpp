@@ -56,6 +56,16 @@ struct Cantilever {
   }
 };
 
+/// DOPRI settings for single-damper runs checked against closed forms to ~1e-8: rtol 1e-10,
+/// atol 1e-14 (states ~1e-3 .. 1e-1), samples every `output_interval`.
+inline RunOptions<double> closed_form_run_options(double output_interval) {
+  RunOptions<double> run;
+  run.stepper.rtol = 1e-10;
+  run.stepper.atol = 1e-14;
+  run.stepper.output_interval = output_interval;
+  return run;
+}
+
 /// Two dampers at X = 0.01 and 0.03 on the platform with the paper's spring, share and friction.
 inline std::vector<PointDamper<double>> paper_dampers(const TScene& s, double preload,
                                                       double mu_s = 0.35, double mu_k = 0.3,
