@@ -25,6 +25,18 @@ struct ContactOptions {
   double wall_restitution = 1.0;
 };
 
+/// The demo's contact choices (--demo, unless a contact option is given): the dampers separate
+/// at lift-off and land again (e = 0.5), and both platform ends are walls (e = 0.5) at which a
+/// damper comes to rest, in contact or in flight (docs/model.md "Resting at a wall", "Held at a
+/// wall in flight"), so that every preload of the demo's sweep runs to its end.
+inline ContactOptions demo_contact_options() {
+  ContactOptions c;
+  c.restitution = 0.5;
+  c.walls = true;
+  c.wall_restitution = 0.5;
+  return c;
+}
+
 /// The option lines of --help.
 inline const char* contact_options_help() {
   return "  --restitution e        dampers leave the platform at lift-off and land again with\n"

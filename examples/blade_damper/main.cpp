@@ -59,7 +59,9 @@ struct Cli {
 const char* kHelp = R"(blade_damper - the paper's blade with two under-platform friction dampers
 
 Usage: blade_damper [options]
-  --demo                 the main job: preloads 1, 12, 26 N and a 32-point sweep 0.5..40 N
+  --demo                 the main job: preloads 1, 12, 26 N and a 32-point sweep 0.5..40 N,
+                         with --restitution 0.5 --ends wall --wall-restitution 0.5 unless
+                         a contact option is given
   --preload N0           one run at preload N0 [N] (repeatable)
   --preloads a,b,...     runs at these preloads [N]
   --sweep lo:hi:count    preload sweep (E(N0) of the paper's Fig. 20), in parallel,
@@ -117,6 +119,7 @@ Cli parse(int argc, char** argv) {
   Cli c;
   c.settings = blade::default_settings();
   auto need = [&](int& i) { return blade::next_argument(argc, argv, i); };
+  bool demo = false, contact_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--help" || a == "-h") {
@@ -125,6 +128,7 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--demo") {
       c.preloads = {1.0, 12.0, 26.0};
       c.sweep = true;
+      demo = true;
     } else if (a == "--preload") {
       c.preloads.push_back(std::stod(need(i)));
     } else if (a == "--preloads") {
@@ -166,8 +170,10 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--fixed-contact") {
       c.params.model.moving_contact = false;
     } else if (blade::parse_contact_option(a, need, i, c.params.contact, c.params.model)) {
+      contact_given = true;
     } else if (a == "--beyond-ends") {
       c.params.model.end_policy = EndPolicy::Extrapolate;
+      contact_given = true;
     } else if (a == "--regularised") {
       c.params.regularised_v_eps = std::stod(need(i));
     } else if (a == "--compare") {
@@ -201,6 +207,7 @@ Cli parse(int argc, char** argv) {
       throw std::invalid_argument("unknown option " + a + " (see --help)");
     }
   }
+  if (demo && !contact_given) c.params.contact = blade::demo_contact_options();  // (end policy: Throw, the default)
   if (!(c.settings.duration > 0)) throw std::invalid_argument("--duration must be > 0");
   if (c.params.platform_elements % 2 != 0)
     throw std::invalid_argument("--platform-elements must be even (the blade tip is the platform's middle node)");

@@ -38,6 +38,34 @@ inline TScene make_t_frame(int modes = 6, int blade_elements = 8, int platform_e
   return s;
 }
 
+/// A 0.2 m steel cantilever along x (the T-frame's section), clamped at x = 0, 8 elements, one
+/// mode: its bending mode has psi_u = 0 everywhere and psi_w = 0 at the root.
+struct Cantilever {
+  FrameModel<double> frame;
+  Index member = 0;
+  ModalBasis<double> basis;
+  double length = 0.2;
+  Cantilever() {
+    const SectionProperties<double> sec{2.06e11, 7800.0, 6e-5, 2e-11};
+    const Index root = frame.add_node(0.0, 0.0), tip = frame.add_node(length, 0.0);
+    member = frame.add_member(root, tip, sec, 8);
+    frame.clamp(root);
+    ModalOptions<double> mo;
+    mo.num_modes = 1;
+    basis = compute_modes(frame.assemble(), mo);
+  }
+};
+
+/// DOPRI settings for single-damper runs checked against closed forms to ~1e-8: rtol 1e-10,
+/// atol 1e-14 (states ~1e-3 .. 1e-1), samples every `output_interval`.
+inline RunOptions<double> closed_form_run_options(double output_interval) {
+  RunOptions<double> run;
+  run.stepper.rtol = 1e-10;
+  run.stepper.atol = 1e-14;
+  run.stepper.output_interval = output_interval;
+  return run;
+}
+
 /// Two dampers at X = 0.01 and 0.03 on the platform with the paper's spring, share and friction.
 inline std::vector<PointDamper<double>> paper_dampers(const TScene& s, double preload,
                                                       double mu_s = 0.35, double mu_k = 0.3,

@@ -59,21 +59,6 @@ struct RestObserver : NullObserver {
 
 // ---- bounces on a cantilever ----------------------------------------------------------------
 
-struct Cantilever {
-  FrameModel<double> frame;
-  Index member = 0;
-  ModalBasis<double> basis;
-  Cantilever() {
-    const SectionProperties<double> sec{2.06e11, 7800.0, 6e-5, 2e-11};
-    const Index root = frame.add_node(0.0, 0.0), tip = frame.add_node(0.2, 0.0);
-    member = frame.add_member(root, tip, sec, 8);
-    frame.clamp(root);
-    ModalOptions<double> mo;
-    mo.num_modes = 1;
-    basis = compute_modes(frame.assemble(), mo);
-  }
-};
-
 // e = 1/2, no friction: the damper starts at rest 5 mm from the start wall with its spring
 // stretched by x0 = 10 mm, so the wall stands at x_w = 5 mm and the spring pushes it into the
 // wall with k x. Between impacts the motion is x = x_w cos(w s) + (v/w) sin(w s) (w = sqrt(k/m)),

@@ -13,10 +13,11 @@
 
 namespace stickslip {
 
-/// The member end a stuck damper rests against (docs/model.md, "Resting at a wall"): a damper
-/// in ContactState::Stick at a MemberEnd::Wall whose wall takes the tangential force into it.
+/// The member end a damper rests against (docs/model.md, "Resting at a wall"): a damper in
+/// ContactState::Stick at a MemberEnd::Wall whose wall takes the tangential force into it, or a
+/// separated one held there along the member while it flies ("Held at a wall in flight").
 enum class WallRest : std::uint8_t {
-  None,   ///< not resting at a wall (an ordinary stick, or not stuck)
+  None,   ///< not resting at a wall (an ordinary stick or flight, or slipping)
   Start,  ///< resting against the wall at X = 0
   Finish  ///< resting against the wall at X = L
 };
@@ -50,16 +51,17 @@ class DamperStates {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
     return states_[static_cast<std::size_t>(i)];
   }
-  /// The wall damper `i` rests against: the one set by set_wall() while its state is Stick,
-  /// None otherwise (a damper that left the stick state no longer rests; asserts 0 <= i < size()).
+  /// The wall damper `i` rests against: the one set by set_wall() while its state is Stick or
+  /// Separated, None otherwise (a damper that slips no longer rests; asserts 0 <= i < size()).
   WallRest wall(Eigen::Index i) const {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
-    if (states_[static_cast<std::size_t>(i)] != ContactState::Stick) return WallRest::None;
+    const ContactState s = states_[static_cast<std::size_t>(i)];
+    if (s != ContactState::Stick && s != ContactState::Separated) return WallRest::None;
     const std::uint64_t bit = std::uint64_t(1) << i;
     return (start_ & bit) ? WallRest::Start : ((finish_ & bit) ? WallRest::Finish : WallRest::None);
   }
   /// Marks damper `i` as resting against wall `w` (None: not resting). The mark counts while the
-  /// damper's state is Stick (see wall()); asserts 0 <= i < size().
+  /// damper's state is Stick or Separated (see wall()); asserts 0 <= i < size().
   void set_wall(Eigen::Index i, WallRest w) {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
     const std::uint64_t bit = std::uint64_t(1) << i;
@@ -73,14 +75,15 @@ class DamperStates {
     for (std::size_t i = 0; i < size_; ++i)
       if (states_[i] != o.states_[i]) return false;
     if (start_ == o.start_ && finish_ == o.finish_) return true;
-    for (Eigen::Index i = 0; i < size_; ++i)  // marks of dampers that left Stick do not count
+    for (Eigen::Index i = 0; i < size_; ++i)  // marks of slipping dampers do not count
       if (wall(i) != o.wall(i)) return false;
     return true;
   }
   /// Not operator==.
   bool operator!=(const DamperStates& o) const noexcept { return !(*this == o); }
 
-  /// "stick,slip+,..." for logs; a damper resting at a wall reads "stick@start" or "stick@finish".
+  /// "stick,slip+,..." for logs; a damper resting at a wall reads "stick@start" or "stick@finish"
+  /// ("separated@start" held there in flight).
   std::string to_string() const {
     std::string s;
     for (std::size_t i = 0; i < size_; ++i) {

@@ -575,13 +575,15 @@ class FrictionDampedSystem {
           CoulombContact<std::decay_t<decltype(law)>> contact(law);
           contact.guards(mode[i], e.V[i], e.N[i], e.f[i] + e.wall_force[i], watch_lift_off(i), g + k);
         });
-      if (has_walls_ && mode.wall(i) != WallRest::None) rest_guard(mode.wall(i), e.N[i], g + k);
+      if (has_walls_ && mode[i] == ContactState::Stick && mode.wall(i) != WallRest::None)
+        rest_guard(mode.wall(i), e.N[i], g + k);
       k += nc;
       if (end_guards_of(mode, i)) {
         const Scalar L = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
         // (an end that extends keeps a constant guard, so that the guard count stays two)
         g[k++] = end_kind_[iu][0] != MemberEnd::Extend ? e.X[i] : Scalar(1);
         g[k++] = end_kind_[iu][1] != MemberEnd::Extend ? L - e.X[i] : Scalar(1);
+        if (has_walls_ && mode[i] == ContactState::Separated) hold_guard(mode.wall(i), e.f[i] + e.wall_force[i], g + k - 2);
       }
     }
   }
@@ -904,6 +906,7 @@ class FrictionDampedSystem {
       e.gap[i] = Scalar(0);
       if (flying_[iu]) {
         flight_rows(i, x);
+        if (has_walls_ && mode.wall(i) != WallRest::None) hold_rows(i, x);
         continue;
       }
       const bool stuck = has_stick_[iu] && s == ContactState::Stick;
@@ -963,13 +966,14 @@ class FrictionDampedSystem {
       const std::size_t iu = static_cast<std::size_t>(i);
       const Damper& dmp = dampers_[iu];
       const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+      const bool held = flying_[iu] && mode.wall(i) != WallRest::None;  // in flight, held by a wall
       Scalar bq;
       if (!Frozen && moving_[iu] && !stuck && !flying_[iu]) {  // b from moving_damper
         bq = modal(slip_b_.col(i)).dot(modal(e.qdd));
       } else {
         bq = C_.col(D + i).dot(e.qdd);
       }
-      if (stuck) {
+      if (stuck || held) {
         e.xdd[i] = bq;
         e.Vdot[i] = 0;
       } else {
@@ -1499,6 +1503,20 @@ class FrictionDampedSystem {
   /// The impact of separated damper i (gap = 0): frictional_impact with W from the member's
   /// impulse response; velocities updated, the loss booked; bounce or landing.
   bool impact(Mode& mode, Index i, Scalar t, State& x);
+  /// Gap acceleration g'' of separated damper i in flight at (mode, t, x):
+  ///   g'' = a^T q'' + 2 s_d V + c V^2 + slope V' - N0/m,  V' = x'' - b^T q'' - (psi_u'^T q') V,
+  /// with s_d = side psi_w'^T q', c = side psi_w''^T q at X (the terms in V with a moving contact
+  /// only: d^2/dt^2 of y = side psi_w(X(t))^T q(t) with X' = V, minus y_d'' = N0/m).
+  Scalar flight_gap_acceleration(const Mode& mode, Index i, Scalar t, const State& x);
+  /// Whether the rebound of separated damper i at gap rate v_after > 0 (state x just after the
+  /// bounce) stays inside the landing band: g'' < 0 and v_after^2 <= 2 |g''| kLandingBand L, i.e.
+  /// the flight's apex below kLandingBand L (docs/model.md "Separation", "The landing band").
+  bool rebound_within_band(const Mode& mode, Index i, Scalar t, const State& x, Scalar v_after);
+  /// Height of the landing band relative to the member length (1e-8 L: 4e-10 m on a 4 cm
+  /// platform): a bounce whose flight would not rise above it lands. Well above the stepper's
+  /// default guard_zero_tolerance (1e-12), by which a gap guard restarted at zero sinks at each
+  /// located impact (docs/model.md "Separation").
+  static constexpr double kLandingBand = 1e-8;
   /// response_ = the member's modal velocity jumps, response_x_ the dampers' x' jumps, for unit
   /// modal impulses impulse_dir_ (two columns), through the other dampers' contact rows.
   void impulse_response(const Mode& mode, const State& x);
@@ -1518,6 +1536,28 @@ class FrictionDampedSystem {
   /// finish: mu_s N + f) is replaced by N, positive in contact (affine in the state like the
   /// others; it falls to 0 with the lift-off guard).
   static void rest_guard(WallRest wall, Scalar N, Scalar* g) noexcept { g[wall == WallRest::Start ? 0 : 1] = N; }
+  /// A separated damper held at a wall (docs/model.md "Held at a wall in flight"): the guard of
+  /// its wall end (end_g[0]: X, end_g[1]: L - X) becomes the wall's reaction, which can only push:
+  /// F at the start wall, -F at the finish wall (F = f + wall_force, the force along u holding it).
+  static void hold_guard(WallRest wall, Scalar F, Scalar* end_g) noexcept {
+    if (wall == WallRest::Start) end_g[0] = F;
+    if (wall == WallRest::Finish) end_g[1] = -F;
+  }
+  /// The tangential row of separated damper i held at a wall: V = 0, i.e. x'' = b^T q'', with the
+  /// force F along u as an unknown, F - m b^T q'' = k x (the stick row without a normal row).
+  void hold_rows(Index i, const State& x) const {
+    const Damper& dmp = dampers_[static_cast<std::size_t>(i)];
+    const auto b = C_.col(D_ + i);
+    const Index j = add_unknown(i, Scalar(1), dmp.effective_stiffness() * x[x_offset() + i], Scalar(0), Scalar(0), D_ + i);
+    modal(F_.col(j)) = -b;
+    modal(L_.col(j)) = -dmp.effective_mass() * b;
+    eval_.V[i] = Scalar(0);
+  }
+  /// Separated dampers held at a wall whose holding force pulls away from it (F < 0 at the
+  /// start, F > 0 at the finish) leave the wall (the mark cleared), until none does.
+  void release_pulled_holds(Mode& mode, Scalar t, const State& x);
+  /// Tangential acceleration V' of separated damper i in flight: x'' - b^T q'' - (psi_u'^T q') V.
+  Scalar flight_sliding_acceleration(const Mode& mode, Index i, Scalar t, const State& x);
   /// A damper at rest that would slip into a wall it lies at (X within kWallBand L of the end, or
   /// beyond it) rests against that wall instead: marked, X set to the end. True when it did.
   /// (Its turning point after a rebound slower than the stepper's guard_zero_tolerance can
@@ -1533,7 +1573,7 @@ class FrictionDampedSystem {
   /// the wall is an ordinary one).
   static void forget_left_walls(Mode& mode) {
     for (Index i = 0; i < mode.size(); ++i)
-      if (mode[i] != ContactState::Stick) mode.set_wall(i, WallRest::None);
+      if (mode[i] != ContactState::Stick && mode[i] != ContactState::Separated) mode.set_wall(i, WallRest::None);
   }
 
   // Scene.
@@ -1820,6 +1860,11 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
     const Index nc = contact_guards_of(mode, i);
     if (local >= nc) {  // a member end: a wall reflects, else the run stops
       const int end = static_cast<int>(local - nc);
+      if (mode[i] == ContactState::Separated && mode.wall(i) == (end == 0 ? WallRest::Start : WallRest::Finish)) {
+        mode.set_wall(i, WallRest::None);  // held in flight: the wall's reaction reached zero, it leaves
+        cache_valid_ = false;
+        continue;
+      }
       if (end_kind_[static_cast<std::size_t>(i)][static_cast<std::size_t>(end)] != MemberEnd::Wall)
         return stop(StopReason::LeftMember, i, t, x, mode);
       wall_hits_.emplace_back(i, end);
@@ -1840,6 +1885,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
   if (!separation_transition(mode, t, x))
     return stop(StopReason::NoConsistentState, impacting_.front(), t, x, mode);
   const bool consistent = resolve(mode, involved, t, x) && land_or_separate(mode, impacting_, t, x);
+  if (has_walls_) release_pulled_holds(mode, t, x);
   forget_left_walls(mode);
   return consistent ? TransitionAction::proceed()
                     : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
@@ -1872,6 +1918,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Sca
     if (flight_slot_[static_cast<std::size_t>(i)] >= 0 && mode[i] != ContactState::Separated)
       lifting_.push_back(i);
   const bool consistent = land_or_separate(mode, lifting_, t, x);
+  if (has_walls_) release_pulled_holds(mode, t, x);
   forget_left_walls(mode);
   return consistent;
 }
@@ -2112,6 +2159,10 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   const std::size_t iu = static_cast<std::size_t>(i);
   const Damper& d = dampers_[iu];
   const Scalar m = d.effective_mass();
+  // A damper held at a wall in flight lands (or bounces) with its own rows out of the member's
+  // response, as any flying damper; the wall holds it again afterwards if nothing moves it away.
+  const WallRest held = mode.wall(i);
+  mode.set_wall(i, WallRest::None);
   const MemberContact c = member_contact(i, x);  // i's shapes now in C_
   const Scalar s = c.slope;
   // Rows of the gap rate g' = (a - s b)^T q' + s x' - y_d' and of V = x' - b^T q' in the
@@ -2122,32 +2173,52 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   const Vec2 v(c.yd - x[yd], c.V);
   impulse_response(mode, x);
   const Mat2 W = inverse_effective_mass(s, m);
-  const NewtonImpact<Scalar> newton(d.restitution, d.landing_speed);
-  const FrictionalImpact<Scalar> hit = detail::with_law(d.law, [&](const auto& law) {
-    using L = std::decay_t<decltype(law)>;
-    if constexpr (L::has_stick_state) {
-      return frictional_impact(newton, law, W, v);
-    } else {  // a bounded friction force has no impulse: Newton's law alone, through W_nn
-      FrictionalImpact<Scalar> r;
-      const NormalImpact<Scalar> normal = newton.impact(v[0], W(0, 0));
-      r.impulse = Vec2(normal.impulse, Scalar(0));
-      r.velocity_after = v + W.col(0) * normal.impulse;
-      r.velocity_after[0] = normal.velocity_after;
-      r.energy_loss = normal.energy_loss;
-      r.lands = normal.lands;
-      r.state = slip_state(r.velocity_after[1]);
-      return r;
-    }
-  });
+  auto solve_impact = [&](const NewtonImpact<Scalar>& newton) {
+    return detail::with_law(d.law, [&](const auto& law) {
+      using L = std::decay_t<decltype(law)>;
+      if constexpr (L::has_stick_state) {
+        return frictional_impact(newton, law, W, v);
+      } else {  // a bounded friction force has no impulse: Newton's law alone, through W_nn
+        FrictionalImpact<Scalar> r;
+        const NormalImpact<Scalar> normal = newton.impact(v[0], W(0, 0));
+        r.impulse = Vec2(normal.impulse, Scalar(0));
+        r.velocity_after = v + W.col(0) * normal.impulse;
+        r.velocity_after[0] = normal.velocity_after;
+        r.energy_loss = normal.energy_loss;
+        r.lands = normal.lands;
+        r.state = slip_state(r.velocity_after[1]);
+        return r;
+      }
+    });
+  };
+  // The velocity jumps of an impulse L on the damper (and -L through the rows on the member).
+  auto apply = [&](const Vec2& L) {
+    x.segment(n_, n_) += response_ * L;
+    for (Index j = 0; j < D_; ++j)
+      if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
+    x[xd_offset() + i] += (s * L[0] + L[1]) / m;
+    x[yd] -= L[0] / m;
+  };
+  FrictionalImpact<Scalar> hit = solve_impact(NewtonImpact<Scalar>(d.restitution, d.landing_speed));
   if (!hit.resolved) return false;
+  apply(hit.impulse);
+  if (!hit.lands && rebound_within_band(mode, i, t, x, hit.velocity_after[0])) {
+    // A rebound too low to leave the landing band is a landing (docs/model.md "Separation"):
+    // the plastic impact (e = 0) in its place, i.e. the difference of the two impulses added.
+    const FrictionalImpact<Scalar> landing = solve_impact(NewtonImpact<Scalar>(Scalar(0), d.landing_speed));
+    if (!landing.resolved) return false;
+    apply(landing.impulse - hit.impulse);
+    hit = landing;
+  }
   const Vec2& L = hit.impulse;
-  x.segment(n_, n_) += response_ * L;
-  for (Index j = 0; j < D_; ++j)
-    if (j != i) x[xd_offset() + j] += response_x_(j, 0) * L[0] + response_x_(j, 1) * L[1];
-  x[xd_offset() + i] += (s * L[0] + L[1]) / m;
-  x[yd] -= L[0] / m;
   if (audit_size() > 4) x[energy_offset() + 4] += hit.energy_loss;
   const ContactState to = hit.lands ? hit.state : ContactState::Separated;
+  if (held != WallRest::None) {  // back at the wall: held (V = 0 in flight), or an impact on it
+    const Scalar V_after = hit.velocity_after[1];
+    const bool into = held == WallRest::Start ? V_after < Scalar(0) : V_after > Scalar(0);
+    if (into) wall_hits_.emplace_back(i, held == WallRest::Start ? 0 : 1);
+    else if (to == ContactState::Separated && V_after == Scalar(0)) mode.set_wall(i, held);
+  }
   impacts_.push_back(ImpactEvent{t, i, L[0], L[1], v[0], hit.velocity_after[0], v[1], hit.velocity_after[1],
                                  hit.energy_loss, to});
   events_.push_back(ContactEvent{t, i, ContactState::Separated, to});
@@ -2155,6 +2226,64 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   if (to == ContactState::Stick) involved_.push_back(i);  // resolve() decides stick or slip
   cache_valid_ = false;
   return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::flight_gap_acceleration(const Mode& mode, Index i, Scalar t,
+                                                                         const State& x) -> Scalar {
+  STICKSLIP_ASSERT(mode[i] == ContactState::Separated);
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Damper& d = dampers_[iu];
+  const Evaluation& e = evaluate(mode, t, x);  // q'' with i in flight (no force of i on the member)
+  const Scalar pull = d.preload / d.effective_mass();
+  const auto qdd = modal(e.qdd);
+  if (!moving_[iu]) return qdd.dot(modal(C_.col(i))) - pull;  // a fixed point: y'' = a^T q''
+  const Scalar Vdot = flight_sliding_acceleration(mode, i, t, x);  // (evaluates the same, cached)
+  const auto& v = values_[iu];
+  const auto q = x.template segment<Modes>(0, n_);
+  const auto qd = x.template segment<Modes>(n_, n_);
+  const Scalar side = d.side, V = e.V[i];
+  return side * (v.psi_w.dot(qdd) + Scalar(2) * v.dpsi_w.dot(qd) * V + v.ddpsi_w.dot(q) * V * V) + e.slope[i] * Vdot -
+         pull;
+}
+
+template <class Scalar_, class Law_, int Modes>
+auto FrictionDampedSystem<Scalar_, Law_, Modes>::flight_sliding_acceleration(const Mode& mode, Index i, Scalar t,
+                                                                             const State& x) -> Scalar {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const Evaluation& e = evaluate(mode, t, x);
+  if (!moving_[iu]) return Scalar(0);
+  evaluate_shapes(i, e.X[i]);
+  const auto& v = values_[iu];
+  const auto qd = x.template segment<Modes>(n_, n_);
+  return e.xdd[i] - v.psi_u.dot(modal(e.qdd)) - v.dpsi_u.dot(qd) * e.V[i];
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::release_pulled_holds(Mode& mode, Scalar t, const State& x) {
+  for (Index pass = 0; pass <= D_; ++pass) {
+    const Evaluation& e = evaluate(mode, t, x);
+    if (!e.finite) return;
+    bool changed = false;
+    for (Index i = 0; i < D_; ++i) {
+      const WallRest w = mode.wall(i);
+      if (mode[i] != ContactState::Separated || w == WallRest::None) continue;
+      const Scalar F = e.f[i] + e.wall_force[i];
+      if (w == WallRest::Start ? F < Scalar(0) : F > Scalar(0)) {
+        mode.set_wall(i, WallRest::None);
+        changed = true;
+      }
+    }
+    if (!changed) return;
+  }
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::rebound_within_band(const Mode& mode, Index i, Scalar t,
+                                                                     const State& x, Scalar v_after) {
+  const Scalar a = flight_gap_acceleration(mode, i, t, x);
+  const Scalar band = Scalar(kLandingBand) * shapes_[static_cast<std::size_t>(damper_shape_[static_cast<std::size_t>(i)])].length();
+  return a < Scalar(0) && v_after * v_after <= Scalar(-2) * a * band;
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -2183,7 +2312,18 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i
   using std::abs;
   const bool rests = has_stick_[iu] && mode[i] != ContactState::Separated &&
                      (d.wall_restitution == Scalar(0) || abs(V) <= d.landing_speed);
-  const Scalar V_after = rests ? Scalar(0) : -d.wall_restitution * V;
+  // Held in flight (docs/model.md "Held at a wall in flight"): a separated damper that arrives at
+  // or below its landing speed, at a plastic wall, or whose rebound would turn within the wall
+  // band (V^2 e^2 <= 2 |V'| kWallBand L with V' pushing it into the wall: no velocity guard in
+  // flight would see that turning point) stays at the wall.
+  const bool holds = mode[i] == ContactState::Separated && [&] {
+    if (d.wall_restitution == Scalar(0) || abs(V) <= d.landing_speed) return true;
+    const Scalar push = (end == 0 ? Scalar(-1) : Scalar(1)) * flight_sliding_acceleration(mode, i, t, x);
+    const Scalar Lm = shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
+    const Scalar rebound = d.wall_restitution * V;
+    return push > Scalar(0) && rebound * rebound <= Scalar(2) * push * Scalar(kWallBand) * Lm;
+  }();
+  const Scalar V_after = rests || holds ? Scalar(0) : -d.wall_restitution * V;
   Eigen::Matrix<Scalar, 2, 1> L(Scalar(0), Scalar(0));
   if (normal) {
     L = inverse_effective_mass(s, m).inverse() * Eigen::Matrix<Scalar, 2, 1>(Scalar(0), V_after - V);
@@ -2206,6 +2346,9 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i
     } else {
       to = slip_state(V_after);
     }
+  } else if (holds) {
+    mode.set_wall(i, end == 0 ? WallRest::Start : WallRest::Finish);
+    x[contact_offset() + i] = end == 0 ? Scalar(0) : shapes_[static_cast<std::size_t>(damper_shape_[iu])].length();
   }
   impacts_.push_back(ImpactEvent{t, i, L[0], L[1], Scalar(0), Scalar(0), V, V_after, loss, to, true});
   events_.push_back(ContactEvent{t, i, mode[i], to});
@@ -2291,7 +2434,8 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::validate_walls(const Mode& mode
     const WallRest wall = mode.wall(i);
     if (wall == WallRest::None) continue;
     const std::size_t iu = static_cast<std::size_t>(i);
-    if (!moving_[iu] || !has_stick_[iu] || end_kind_[iu][wall == WallRest::Start ? 0 : 1] != MemberEnd::Wall)
+    const bool needs_stick = mode[i] != ContactState::Separated;  // (held in flight: no friction)
+    if (!moving_[iu] || (needs_stick && !has_stick_[iu]) || end_kind_[iu][wall == WallRest::Start ? 0 : 1] != MemberEnd::Wall)
       throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) + "] rests at the " +
                                   (wall == WallRest::Start ? "start" : "finish") + " wall, but damper " +
                                   std::to_string(i) + " has no wall there (a moving contact, a law with a "

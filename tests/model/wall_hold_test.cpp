@@ -1,0 +1,150 @@
+// A separated damper held at a wall in flight (issue #22; docs/model.md "Held at a wall in
+// flight"): a flying damper whose spring pushes it into a MemberEnd::Wall bounces there with
+// falling speeds and is then held (X at the end, V = 0, the wall taking the push along the
+// member) while its normal coordinate keeps flying; it lands on the member at the wall. Before
+// the hold a flying damper kept reflecting at a wall; the blade example at 0.5-1.3 N with
+// --restitution 0.5 --ends wall ended such sequences with a Zeno stop.
+//
+// References (closed forms, not the model's code): a damper of mass m on the straight
+// cantilever, whose bending mode has psi_u = 0 everywhere and psi_w = 0 at the root, with the
+// member at rest: in flight its tangential motion m x'' = -k x is a lone oscillator hitting a
+// stop at x_w (as in wall_rest_test.cpp): impact speeds v0 e^j, times t1 + sum (2/w) atan(v/(w x_w));
+// its normal motion y_d = -h + a t^2 / 2 (a = N0/m) until it lands at the wall, where the member
+// does not move, at t = sqrt(2 h / a). The hold comes at the first impact at or below the landing
+// speed or whose rebound e v would turn within the wall band 1e-8 L: (e v)^2 <= 2 (k x_w / m) 1e-8 L.
+#include "model/model_test_scenes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace wall_hold_test {
+
+using namespace model_test;
+
+struct Samples : NullObserver {
+  struct Sample {
+    double t;
+    DamperStates mode;
+    System::State x;
+  };
+  std::vector<Sample> samples;
+  bool on_sample(double t, const System::State& x, const DamperStates& mode) {
+    samples.push_back({t, mode, x});
+    return true;
+  }
+};
+
+// m = 0.02 kg, k = 100 N/m (w = 70.7 rad/s), spring stretched x0 = 10 mm at X0 = 5 mm (the wall
+// at x_w = 5 mm pushes back k x_w = 0.5 N), wall restitution 1/2; N0 = 0.1 N (a = 5 m/s^2) from a
+// height h = 5 cm: the bounces end in the hold at ~0.08 s, the landing comes at 0.141 s (plastic:
+// e = 0), and the damper then rests stuck at the wall (its spring's push 0.5 N beyond the
+// friction bound mu_s N0 = 0.03 N).
+TEST(WallHold, AFlyingDamperPushedIntoAWallIsHeldThereUntilItLands) {
+  const Cantilever c;
+  const double m = 0.02, k = 100.0, N0 = 0.1, e = 0.5, X0 = 0.005, x0 = 0.01, x_w = x0 - X0, h = 0.05;
+  const double mu = 0.3, a = N0 / m;
+  PointDamper<double> d(c.member, X0, m, k, N0, CoulombLaw<double>(mu, mu));
+  d.separation = Separation::Separate;
+  d.restitution = 0.0;
+  d.start_end = MemberEnd::Wall;
+  d.finish_end = MemberEnd::Wall;
+  d.wall_restitution = e;
+  System sys(c.frame, c.basis, {d});
+  System::State x = sys.initial_state();
+  x[sys.x_offset()] = x0;
+  x[sys.flight_offset()] = -h;  // gap = psi_w(X)^T q - y_d = h with the member at rest
+  DamperStates mode(1, ContactState::Separated);
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  const double E0 = sys.mechanical_energy(mode, 0.0, x);
+  RunOptions<double> run = closed_form_run_options(1e-3);
+  run.stepper.max_step = 1e-4;
+  Samples obs;
+  const auto r = simulate(sys, mode, 0.0, x, 0.2, run, obs);
+  ASSERT_TRUE(r.ok()) << r.message;
+
+  // The wall impacts: speeds v0 e^j at t1 + sum of the flights. Each impact is located up to
+  // z = 1e-12 m (the guard zero tolerance) beyond the last, which adds at most 2 (k x_w / m) z to
+  // v^2 per impact: |dv| <= (j + 1) (k x_w / m) z / v_j, plus 1e-8 for the event tolerances.
+  const double w = std::sqrt(k / m), v0 = w * std::sqrt(x0 * x0 - x_w * x_w), band = 1e-8 * c.length;
+  const auto flight = [&](double v) { return 2.0 / w * std::atan(v / (w * x_w)); };
+  int K = 0;  // the holding impact
+  while (v0 * std::pow(e, K) > d.landing_speed && std::pow(e * v0 * std::pow(e, K), 2) > 2 * (k * x_w / m) * band) ++K;
+  ASSERT_EQ(K, 10);  // rebound 2.99e-4 m/s against the band's 3.16e-4 m/s (5 %); the 9th: 6e-4 m/s
+  const auto& hits = sys.impacts();
+  ASSERT_EQ(static_cast<int>(hits.size()), K + 2);  // K + 1 at the wall, then the landing
+  double t_j = std::acos(x_w / x0) / w;
+  for (int j = 0; j <= K; ++j) {
+    const double v = v0 * std::pow(e, j);
+    if (j > 0) t_j += flight(v);
+    const auto& hit = hits[static_cast<std::size_t>(j)];
+    EXPECT_TRUE(hit.wall) << "impact " << j;
+    EXPECT_EQ(hit.to, ContactState::Separated) << "impact " << j;
+    const double v_tol = (j + 1) * (k * x_w / m) * 1e-12 / v + 1e-8;
+    EXPECT_NEAR(hit.sliding_velocity, -v, v_tol) << "impact " << j;
+    EXPECT_NEAR(hit.t, t_j, 1e-8) << "impact " << j;
+    EXPECT_NEAR(hit.sliding_velocity_after, j < K ? e * v : 0.0, v_tol) << "impact " << j;
+  }
+  const double t_hold = t_j, t_land = std::sqrt(2 * h / a);
+  ASSERT_LT(t_hold, t_land - 0.01);
+  // The landing at the wall: a plastic normal impact at sqrt(2 a h), no sliding (V = 0 before).
+  const auto& land = hits.back();
+  EXPECT_FALSE(land.wall);
+  EXPECT_NEAR(land.t, t_land, 1e-8);
+  EXPECT_NEAR(land.normal_velocity, -std::sqrt(2 * a * h), 1e-8);
+  EXPECT_EQ(land.sliding_velocity, 0.0);
+
+  // While held: X at the wall exactly, V = 0, no friction in flight, the wall's reaction the
+  // spring's push k x (x within the band of x_w: the hold came at the impact, x = X + x_w), the
+  // normal coordinate on its parabola (1e-9 m: the run's tolerance on 5 cm).
+  int held = 0;
+  for (const auto& s : obs.samples) {
+    if (s.t <= t_hold + 1e-6 || s.t >= t_land - 1e-6) continue;
+    ++held;
+    EXPECT_EQ(s.mode.to_string(), "separated@start") << "t = " << s.t;
+    EXPECT_EQ(s.x[sys.contact_offset()], 0.0);
+    const auto& ev = sys.evaluate(s.mode, s.t, s.x);
+    EXPECT_EQ(ev.V[0], 0.0);
+    EXPECT_EQ(ev.f[0], 0.0);
+    EXPECT_NEAR(ev.wall_force[0], k * x_w, k * (band + 1e-9)) << "t = " << s.t;
+    EXPECT_NEAR(s.x[sys.flight_offset()], -h + 0.5 * a * s.t * s.t, 1e-9) << "t = " << s.t;
+  }
+  EXPECT_GT(held, 40);
+  // Landed at the wall and pushed into it: stuck there, friction at its bound mu N0, the wall the rest.
+  EXPECT_EQ(r.mode.to_string(), "stick@start");
+  const auto& ev = sys.evaluate(r.mode, r.t, r.x);
+  EXPECT_NEAR(ev.f[0], mu * N0, 1e-12);
+  EXPECT_NEAR(ev.wall_force[0], k * r.x[sys.x_offset()] - mu * N0, 1e-9);
+  // The audit closes: the wall does no work while it holds (V = 0); the losses of the bounces and
+  // of the plastic landing are booked (residual: the run's tolerance on 0.5 k x0^2 + N0 h = 1e-2 J,
+  // bound 1e-8 of it).
+  const auto bal = sys.energy_balance(r.mode, r.t, r.x, E0);
+  EXPECT_NEAR(bal.residual, 0.0, 1e-8 * (0.5 * k * x0 * x0 + N0 * h));
+}
+
+// The hold lasts while the wall pushes: a damper marked as held in flight whose spring pulls it
+// away from the wall (x < 0 at the start wall: the force -k x points along +u) is released at
+// once (make_consistent), and one pushed into it (x > 0) stays held, with the reaction k x.
+TEST(WallHold, TheHoldEndsWhenTheForcePullsAway) {
+  const Cantilever c;
+  const double m = 0.02, k = 100.0, N0 = 0.1;
+  PointDamper<double> d(c.member, 0.0, m, k, N0, CoulombLaw<double>(0.3, 0.3));
+  d.separation = Separation::Separate;
+  d.start_end = MemberEnd::Wall;
+  System sys(c.frame, c.basis, {d});
+  for (const double xs : {-1e-3, 1e-3}) {
+    System::State x = sys.initial_state();
+    x[sys.x_offset()] = xs;
+    x[sys.flight_offset()] = -1e-3;
+    DamperStates mode(1, ContactState::Separated);
+    mode.set_wall(0, WallRest::Start);
+    ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+    EXPECT_EQ(mode.wall(0), xs > 0 ? WallRest::Start : WallRest::None) << "x = " << xs;
+    if (xs > 0) {
+      EXPECT_NEAR(sys.evaluate(mode, 0.0, x).wall_force[0], k * xs, 1e-12);
+    }
+  }
+}
+
+}  // namespace wall_hold_test
