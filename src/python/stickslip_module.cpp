@@ -535,6 +535,9 @@ void bind_simulate(py::module_& m) {
       .def_readonly("separated_fraction", &Stats::separated_fraction)
       .def_readonly("bounces", &Stats::bounces)
       .def_readonly("landings", &Stats::landings)
+      .def_readonly("wall_impacts", &Stats::wall_impacts)
+      .def_readonly("wall_rests", &Stats::wall_rests)
+      .def_readonly("wall_time", &Stats::wall_time)
       .def_readonly("regime", &Stats::regime);
   py::class_<StepperStats>(m, "StepperStats")
       .def_readonly("accepted_steps", &StepperStats::accepted_steps)

@@ -55,6 +55,13 @@ def contact_probe(state, v, N, f, watch=False):
     return C(state) + R(v) + R(N) + R(f) + C(1 if watch else 0)
 
 
+def impact_probe(e, landing_speed, W_nn, W_nt, W_tt, v_n, v_t, W_tn=None):
+    """Kind 5 of contact_fuzz.cpp: an impact; W_tn given makes W asymmetric."""
+    b = C(5) + R(e) + R(landing_speed) + R(W_nn) + R(W_nt) + R(W_tt)
+    b += C(1) + R(W_tn) if W_tn is not None else C(0)
+    return b + R(v_n) + R(v_t)
+
+
 def contact_coulomb(mu_s, mu_k, tol, probes):
     return C(0) + R(mu_s) + R(mu_k) + R(tol) + b''.join(probes)
 
@@ -129,6 +136,33 @@ CORPUS = {
             contact_probe(1, 0.0, -1.0, 0.0, True)]),
         'decide_non_finite_inputs': contact_coulomb(0.4, 0.3, 1e-8, [
             contact_probe(0, NAN, 1.0, 0.0), contact_probe(1, 0.0, INF, 0.0), contact_probe(2, 0.0, 1.0, -INF)]),
+        # issue #22: the Separated state (4): no friction force, one Falling guard (the gap), decide's rules
+        'separated_state': contact_coulomb(0.4, 0.3, 1e-8, [
+            contact_probe(4, 0.5, 1e-3, 0.1), contact_probe(4, 0.0, 0.0, 0.0, True), contact_probe(4, 0.0, 2.0, 0.7),
+            contact_probe(4, NAN, INF, -INF, True)]),
+        # issue #22: impacts (kind 5) with the directions decoupled (W_nt = 0): a bounce that sticks, a bounce
+        # that slips, a landing below the landing speed, a plastic impact (e = 0), no approach (v_n > 0), and an
+        # elastic impact (e = 1) that loses only the sliding energy
+        'impact_decoupled': contact_coulomb(0.4, 0.3, 1e-8, [
+            impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -1.0, 0.01), impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -1.0, 5.0),
+            impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -5e-5, -0.3), impact_probe(0.0, 0.0, 1.0, 0.0, 3.0, -2.0, -1.0),
+            impact_probe(0.5, 1e-4, 1.0, 0.0, 1.0, 0.5, 1.0), impact_probe(1.0, 0.0, 2.0, 0.0, 2.0, -1.0, 0.0)]),
+        # issue #22: impacts with the directions coupled (a damper on a modal member: W = I/m + Psi^T Psi), in
+        # stick and in slip, e = 1 (Newton + Coulomb may create energy there, reported), and the refusals:
+        # W not positive definite, W asymmetric, a non-finite v, e > 1, a negative landing speed
+        'impact_coupled': contact_coulomb(0.4, 0.3, 1e-8, [
+            impact_probe(0.5, 1e-4, 20.0, 4.0, 25.0, -1.0, 0.01), impact_probe(0.5, 1e-4, 20.0, -4.0, 25.0, -1.0, 3.0),
+            impact_probe(1.0, 0.0, 1.0, 0.9, 1.0, -1.0, -0.2), impact_probe(0.5, 1e-4, 1.0, 2.0, 1.0, -1.0, 0.0),
+            impact_probe(0.5, 1e-4, 1.0, 0.5, 1.0, -1.0, 0.0, W_tn=0.4), impact_probe(0.5, 1e-4, 1.0, 0.0, 1.0, NAN, 0.0),
+            impact_probe(1.5, 1e-4, 1.0, 0.0, 1.0, -1.0, 0.0), impact_probe(0.5, -1e-4, 1.0, 0.0, 1.0, -1.0, 0.0)]),
+        # issue #22: impacts at extreme sizes (well posed at 1e50 / 1e-50; beyond, only the exception types)
+        'impact_extremes': contact_coulomb(1e6, 1e6, 0.0, [
+            impact_probe(0.5, 0.0, 1e-50, 0.0, 1e50, -1e50, 1e50), impact_probe(1.0, 0.0, 1e50, 1e-50, 1e-50, -1e-300, 1e-300),
+            impact_probe(0.5, 0.0, 1e-300, 0.0, 1e-300, -1e300, 1e300), impact_probe(0.5, 0.0, 0.0, 0.0, 1.0, -1.0, 0.0),
+            impact_probe(0.5, INF, 1.0, 0.0, 1.0, -1.0, 0.0)]),
+        # issue #22: a regularised law has no stick state: only NewtonImpact is probed
+        'impact_regularised': contact_regularised(0.3, 1e-4, False, 1e-8, [
+            impact_probe(0.5, 1e-4, 2.0, 1.0, 2.0, -1.0, 0.5), impact_probe(0.0, 0.0, 2.0, 0.0, 2.0, -1.0, 0.5)]),
         'extreme_forces': contact_coulomb(1e6, 1e6, 0.0, [
             contact_probe(1, 1e150, 1e150, 1e150, True), contact_probe(0, 0.0, 1e150, -1e150, True)]),
     },

@@ -41,43 +41,72 @@ struct Samples : NullObserver {
 // height h = 5 cm: the bounces end in the hold at ~0.08 s, the landing comes at 0.141 s (plastic:
 // e = 0), and the damper then rests stuck at the wall (its spring's push 0.5 N beyond the
 // friction bound mu_s N0 = 0.03 N).
+struct HeldScene {
+  static constexpr double m = 0.02, k = 100.0, N0 = 0.1, e = 0.5, X0 = 0.005, x0 = 0.01, x_w = x0 - X0,
+                          h = 0.05, mu = 0.3, a = N0 / m, t_end = 0.2;
+  Cantilever c;
+  PointDamper<double> d;
+  System sys;
+  System::State x;
+  DamperStates mode{1, ContactState::Separated};
+  RunOptions<double> run = closed_form_run_options(1e-3);
+
+  static PointDamper<double> make_damper(const Cantilever& beam) {
+    PointDamper<double> p(beam.member, X0, m, k, N0, CoulombLaw<double>(mu, mu));
+    p.separation = Separation::Separate;
+    p.restitution = 0.0;
+    p.start_end = MemberEnd::Wall;
+    p.finish_end = MemberEnd::Wall;
+    p.wall_restitution = e;
+    return p;
+  }
+  HeldScene() : d(make_damper(c)), sys(c.frame, c.basis, {d}), x(sys.initial_state()) {
+    x[sys.x_offset()] = x0;
+    x[sys.flight_offset()] = -h;  // gap = psi_w(X)^T q - y_d = h with the member at rest
+    run.stepper.max_step = 1e-4;
+  }
+
+  // The wall impacts: speeds v0 e^j at t1 + sum of the flights; the holding impact K is the first
+  // at or below the landing speed or whose rebound turns within the band.
+  double w() const { return std::sqrt(k / m); }
+  double v0() const { return w() * std::sqrt(x0 * x0 - x_w * x_w); }
+  double band() const { return 1e-8 * c.length; }
+  double flight(double v) const { return 2.0 / w() * std::atan(v / (w() * x_w)); }
+  int holding_impact() const {
+    int K = 0;
+    while (v0() * std::pow(e, K) > d.landing_speed && std::pow(e * v0() * std::pow(e, K), 2) > 2 * (k * x_w / m) * band())
+      ++K;
+    return K;
+  }
+  double impact_time(int j) const {
+    double t = std::acos(x_w / x0) / w();
+    for (int i = 1; i <= j; ++i) t += flight(v0() * std::pow(e, i));
+    return t;
+  }
+};
+
 TEST(WallHold, AFlyingDamperPushedIntoAWallIsHeldThereUntilItLands) {
-  const Cantilever c;
-  const double m = 0.02, k = 100.0, N0 = 0.1, e = 0.5, X0 = 0.005, x0 = 0.01, x_w = x0 - X0, h = 0.05;
-  const double mu = 0.3, a = N0 / m;
-  PointDamper<double> d(c.member, X0, m, k, N0, CoulombLaw<double>(mu, mu));
-  d.separation = Separation::Separate;
-  d.restitution = 0.0;
-  d.start_end = MemberEnd::Wall;
-  d.finish_end = MemberEnd::Wall;
-  d.wall_restitution = e;
-  System sys(c.frame, c.basis, {d});
-  System::State x = sys.initial_state();
-  x[sys.x_offset()] = x0;
-  x[sys.flight_offset()] = -h;  // gap = psi_w(X)^T q - y_d = h with the member at rest
-  DamperStates mode(1, ContactState::Separated);
+  HeldScene scene;
+  System& sys = scene.sys;
+  System::State x = scene.x;
+  DamperStates mode = scene.mode;
+  const double m = scene.m, k = scene.k, N0 = scene.N0, e = scene.e, x0 = scene.x0, x_w = scene.x_w, h = scene.h, mu = scene.mu, a = scene.a;
   ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
   const double E0 = sys.mechanical_energy(mode, 0.0, x);
-  RunOptions<double> run = closed_form_run_options(1e-3);
-  run.stepper.max_step = 1e-4;
   Samples obs;
-  const auto r = simulate(sys, mode, 0.0, x, 0.2, run, obs);
+  const auto r = simulate(sys, mode, 0.0, x, scene.t_end, scene.run, obs);
   ASSERT_TRUE(r.ok()) << r.message;
 
   // The wall impacts: speeds v0 e^j at t1 + sum of the flights. Each impact is located up to
   // z = 1e-12 m (the guard zero tolerance) beyond the last, which adds at most 2 (k x_w / m) z to
   // v^2 per impact: |dv| <= (j + 1) (k x_w / m) z / v_j, plus 1e-8 for the event tolerances.
-  const double w = std::sqrt(k / m), v0 = w * std::sqrt(x0 * x0 - x_w * x_w), band = 1e-8 * c.length;
-  const auto flight = [&](double v) { return 2.0 / w * std::atan(v / (w * x_w)); };
-  int K = 0;  // the holding impact
-  while (v0 * std::pow(e, K) > d.landing_speed && std::pow(e * v0 * std::pow(e, K), 2) > 2 * (k * x_w / m) * band) ++K;
+  const double v0 = scene.v0(), band = scene.band();
+  const int K = scene.holding_impact();
   ASSERT_EQ(K, 10);  // rebound 2.99e-4 m/s against the band's 3.16e-4 m/s (5 %); the 9th: 6e-4 m/s
   const auto& hits = sys.impacts();
   ASSERT_EQ(static_cast<int>(hits.size()), K + 2);  // K + 1 at the wall, then the landing
-  double t_j = std::acos(x_w / x0) / w;
   for (int j = 0; j <= K; ++j) {
-    const double v = v0 * std::pow(e, j);
-    if (j > 0) t_j += flight(v);
+    const double v = v0 * std::pow(e, j), t_j = scene.impact_time(j);
     const auto& hit = hits[static_cast<std::size_t>(j)];
     EXPECT_TRUE(hit.wall) << "impact " << j;
     EXPECT_EQ(hit.to, ContactState::Separated) << "impact " << j;
@@ -86,7 +115,7 @@ TEST(WallHold, AFlyingDamperPushedIntoAWallIsHeldThereUntilItLands) {
     EXPECT_NEAR(hit.t, t_j, 1e-8) << "impact " << j;
     EXPECT_NEAR(hit.sliding_velocity_after, j < K ? e * v : 0.0, v_tol) << "impact " << j;
   }
-  const double t_hold = t_j, t_land = std::sqrt(2 * h / a);
+  const double t_hold = scene.impact_time(K), t_land = std::sqrt(2 * h / a);
   ASSERT_LT(t_hold, t_land - 0.01);
   // The landing at the wall: a plastic normal impact at sqrt(2 a h), no sliding (V = 0 before).
   const auto& land = hits.back();
@@ -99,16 +128,16 @@ TEST(WallHold, AFlyingDamperPushedIntoAWallIsHeldThereUntilItLands) {
   // spring's push k x (x within the band of x_w: the hold came at the impact, x = X + x_w), the
   // normal coordinate on its parabola (1e-9 m: the run's tolerance on 5 cm).
   int held = 0;
-  for (const auto& s : obs.samples) {
-    if (s.t <= t_hold + 1e-6 || s.t >= t_land - 1e-6) continue;
+  for (const auto& sample : obs.samples) {
+    if (sample.t <= t_hold + 1e-6 || sample.t >= t_land - 1e-6) continue;
     ++held;
-    EXPECT_EQ(s.mode.to_string(), "separated@start") << "t = " << s.t;
-    EXPECT_EQ(s.x[sys.contact_offset()], 0.0);
-    const auto& ev = sys.evaluate(s.mode, s.t, s.x);
+    EXPECT_EQ(sample.mode.to_string(), "separated@start") << "t = " << sample.t;
+    EXPECT_EQ(sample.x[sys.contact_offset()], 0.0);
+    const auto& ev = sys.evaluate(sample.mode, sample.t, sample.x);
     EXPECT_EQ(ev.V[0], 0.0);
     EXPECT_EQ(ev.f[0], 0.0);
-    EXPECT_NEAR(ev.wall_force[0], k * x_w, k * (band + 1e-9)) << "t = " << s.t;
-    EXPECT_NEAR(s.x[sys.flight_offset()], -h + 0.5 * a * s.t * s.t, 1e-9) << "t = " << s.t;
+    EXPECT_NEAR(ev.wall_force[0], k * x_w, k * (band + 1e-9)) << "t = " << sample.t;
+    EXPECT_NEAR(sample.x[sys.flight_offset()], -h + 0.5 * a * sample.t * sample.t, 1e-9) << "t = " << sample.t;
   }
   EXPECT_GT(held, 40);
   // Landed at the wall and pushed into it: stuck there, friction at its bound mu N0, the wall the rest.
@@ -121,6 +150,47 @@ TEST(WallHold, AFlyingDamperPushedIntoAWallIsHeldThereUntilItLands) {
   // bound 1e-8 of it).
   const auto bal = sys.energy_balance(r.mode, r.t, r.x, E0);
   EXPECT_NEAR(bal.residual, 0.0, 1e-8 * (0.5 * k * x0 * x0 + N0 * h));
+}
+
+// DamperStatistics over the run of the test above: K + 1 = 11 wall impacts, one rest at the wall
+// (from the hold on: held in flight, then stuck there), resting time t_end - t_hold, separated
+// time t_land (closed forms of the scene), one landing, no bounce on the member; a window that
+// starts after the hold sees the rest time only (no impact, no new rest).
+TEST(WallHold, DamperStatisticsCountTheWallImpactsAndTheRest) {
+  HeldScene s;
+  ASSERT_TRUE(s.sys.make_consistent(s.mode, 0.0, s.x));
+  const int K = s.holding_impact();
+  const double t_hold = s.impact_time(K), t_land = std::sqrt(2 * s.h / s.a), t_late = 0.5 * (t_hold + t_land);
+  const double period = 0.05;
+  DamperStatistics<System> all(s.sys, s.mode, 0.0, s.x, {0.0, s.t_end, period});
+  DamperStatistics<System> late(s.sys, s.mode, 0.0, s.x, {t_late, s.t_end, period});
+  struct Both : NullObserver {
+    DamperStatistics<System>& a;
+    DamperStatistics<System>& b;
+    Both(DamperStatistics<System>& a_, DamperStatistics<System>& b_) : a(a_), b(b_) {}
+    bool on_step(double t, const System::State& x, const DamperStates& mode) {
+      return a.on_step(t, x, mode) && b.on_step(t, x, mode);
+    }
+    void on_event(const EventRecord<double, DamperStates>& r, const System::State& x) {
+      a.on_event(r, x);
+      b.on_event(r, x);
+    }
+  } obs(all, late);
+  const auto r = simulate(s.sys, s.mode, 0.0, s.x, s.t_end, s.run, obs);
+  ASSERT_TRUE(r.ok()) << r.message;
+  // Times: the events are located to ~1e-12 s; 1e-8 s covers the impact times' own tolerance above.
+  const auto st = all.statistics(0);
+  EXPECT_EQ(st.wall_impacts, K + 1);
+  EXPECT_EQ(st.wall_rests, 1);
+  EXPECT_NEAR(st.wall_time, s.t_end - t_hold, 1e-8);
+  EXPECT_NEAR(st.separated_time, t_land, 1e-8);
+  EXPECT_EQ(st.bounces, 0);
+  EXPECT_EQ(st.landings, 1);
+  const auto sl = late.statistics(0);
+  EXPECT_EQ(sl.wall_impacts, 0);
+  EXPECT_EQ(sl.wall_rests, 0);
+  EXPECT_NEAR(sl.wall_time, s.t_end - t_late, 1e-8);
+  EXPECT_EQ(sl.landings, 1);
 }
 
 // The hold lasts while the wall pushes: a damper marked as held in flight whose spring pulls it

@@ -96,6 +96,11 @@ struct DamperWindowStatistics {
   Scalar separated_fraction{};    ///< separated_time / observed_time (NaN when nothing was observed)
   Eigen::Index bounces = 0;       ///< impacts in the window after which the damper flew again
   Eigen::Index landings = 0;      ///< impacts in the window after which it stayed in contact
+  Eigen::Index wall_impacts = 0;  ///< impacts on a member-end wall (MemberEnd::Wall) in the window
+  /// times in the window the damper came to rest at a wall (its mode gained a wall mark,
+  /// DamperStates::wall: a stick there, or held there in flight)
+  Eigen::Index wall_rests = 0;
+  Scalar wall_time{};             ///< time resting at a wall (a wall mark) within the window [s]
   /// classify_regime(stick_fraction, separated_fraction)
   DamperRegime regime = DamperRegime::NotReached;
 };
@@ -144,6 +149,9 @@ class DamperStatistics {
     separated_time_.assign(D, Scalar(0));
     bounces_.assign(D, 0);
     landings_.assign(D, 0);
+    wall_impacts_.assign(D, 0);
+    wall_rests_.assign(D, 0);
+    wall_time_.assign(D, Scalar(0));
     impacts_seen_ = system.impacts().size();
     switches_.assign(D, 0);
     prev_V_.assign(D, Scalar(0));
@@ -167,6 +175,7 @@ class DamperStatistics {
     if (b > a) observed_ += b - a;
     const typename System::Evaluation* e = regularised_ ? &system_.evaluate(mode, t, x) : nullptr;
     for (std::size_t i = 0; i < v_eps_.size(); ++i) {
+      if (b > a && mode.wall(static_cast<Index>(i)) != WallRest::None) wall_time_[i] += b - a;
       if (mode[static_cast<Index>(i)] == ContactState::Separated) {  // in flight: neither stuck nor sliding on it
         if (b > a) separated_time_[i] += b - a;
         if (e) prev_V_[i] = e->V[static_cast<Index>(i)];
@@ -185,19 +194,23 @@ class DamperStatistics {
   }
 
   /// After each transition: a damper whose state changed switched (when t is in the window);
-  /// the impacts the system logged in it (FrictionDampedSystem::impacts) are bounces or landings.
+  /// the impacts the system logged in it (FrictionDampedSystem::impacts) are wall impacts,
+  /// bounces or landings; a damper whose mode gained a wall mark came to rest at a wall.
   void on_event(const EventRecord<Scalar, Mode>& record, const State& x_after) {
     const bool inside = record.t >= window_.t_start && record.t <= window_.t_end;
     const auto& impacts = system_.impacts();
     if (impacts.size() < impacts_seen_) impacts_seen_ = 0;  // the log was cleared
     for (; impacts_seen_ < impacts.size(); ++impacts_seen_) {
       const auto& hit = impacts[impacts_seen_];
-      if (hit.wall || !(hit.t >= window_.t_start && hit.t <= window_.t_end)) continue;
-      ++(hit.to == ContactState::Separated ? bounces_ : landings_)[static_cast<std::size_t>(hit.damper)];
+      if (!(hit.t >= window_.t_start && hit.t <= window_.t_end)) continue;
+      auto& count = hit.wall ? wall_impacts_ : (hit.to == ContactState::Separated ? bounces_ : landings_);
+      ++count[static_cast<std::size_t>(hit.damper)];
     }
     for (std::size_t i = 0; i < v_eps_.size(); ++i) {
       const Index ii = static_cast<Index>(i);
       if (std::isnan(v_eps_[i]) && inside && record.from[ii] != record.to[ii]) ++switches_[i];
+      if (inside && record.from.wall(ii) == WallRest::None && record.to.wall(ii) != WallRest::None)
+        ++wall_rests_[i];
     }
     if (regularised_) read_velocities(record.to, record.t, x_after);  // a reset may change V
   }
@@ -223,6 +236,9 @@ class DamperStatistics {
     s.separated_fraction = observed_ > 0 ? separated_time_[iu] / observed_ : none;
     s.bounces = bounces_[iu];
     s.landings = landings_[iu];
+    s.wall_impacts = wall_impacts_[iu];
+    s.wall_rests = wall_rests_[iu];
+    s.wall_time = wall_time_[iu];
     s.regime = classify_regime(s.stick_fraction, s.separated_fraction);
     return s;
   }
@@ -267,8 +283,8 @@ class DamperStatistics {
   Scalar observed_ = 0;
   bool regularised_ = false;
   std::vector<Scalar> v_eps_;  // NaN for a damper with a stick state
-  std::vector<Scalar> stick_time_, prev_V_, separated_time_;
-  std::vector<Index> switches_, bounces_, landings_;
+  std::vector<Scalar> stick_time_, prev_V_, separated_time_, wall_time_;
+  std::vector<Index> switches_, bounces_, landings_, wall_impacts_, wall_rests_;
   std::size_t impacts_seen_ = 0;  // entries of system.impacts() already counted
 };
 
