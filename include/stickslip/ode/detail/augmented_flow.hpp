@@ -42,6 +42,8 @@ struct ExactStepperStats {
   long mode_cache_hits = 0;      ///< modes whose propagators came from the mode cache
   long dense_outputs = 0;        ///< points taken from a Lawson step's dense output
   long event_reintegrations = 0;  ///< trial steps re-taken to refine an event (Reintegrate)
+  long long_slip_steps = 0;      ///< Lawson steps longer than the guard sampling (frozen guards)
+  long slip_bound_rejections = 0;  ///< long Lawson steps re-taken at the guard sampling step
 };
 
 namespace detail {
@@ -271,6 +273,16 @@ class AugmentedFlow {
   /// the similarity is exact in floating point.
   void expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
     build_ = bal_ * tau;
+    out = build_.exp();
+    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    ++st.propagator_exponentials;
+  }
+
+  /// out = exp(|Â| tau) (|Â| entrywise), the entrywise bound |exp(Â u)| <= exp(|Â| tau) for
+  /// 0 <= u <= tau, computed as D exp(|B| tau) D^-1 (|Â| = D |B| D^-1 for the positive diagonal D
+  /// of the balancing), which needs no squarings where ||B|| tau is small.
+  void abs_expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
+    build_ = bal_.cwiseAbs() * tau;
     out = build_.exp();
     out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
     ++st.propagator_exponentials;
