@@ -131,6 +131,7 @@ TEST(ExactLinearStepperFrozenGuards, GuardDippingBetweenLongSlippingStepsIsLocat
     opt.rtol = 1e-10;
     opt.atol = 1e-12;
     stickslip::ExactLinearStepper<DriftingGrazer> stepper(sys, opt);
+  stepper.set_long_slipping_steps(true);
     StepLog log;
     log.b = sc.b;
     const auto r = stepper.integrate(0, 0.0, sc.x0(eps), 2 * t_ref, log);
@@ -161,6 +162,7 @@ TEST(ExactLinearStepperFrozenGuards, LongSlippingStepsStopShortOfACloseApproach)
   opt.rtol = 1e-10;                       // bound the round-off of the steps, ~1e-16 a b)
   opt.atol = 1e-12;
   stickslip::ExactLinearStepper<DriftingGrazer> stepper(sys, opt);
+  stepper.set_long_slipping_steps(true);
   StepLog log;
   log.b = sc.b;
   const double t_end = sc.t_min(sc.m_root) + kPi / sc.w;

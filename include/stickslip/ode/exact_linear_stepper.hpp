@@ -156,6 +156,12 @@ class ExactLinearStepper {
     blocks_.clear();
   }
 
+  /// Long Lawson steps in inexact modes that give frozen affine guards (docs/ode.md, "Long
+  /// slipping steps"): off by default - on the blade model they cost more (bounds and stage
+  /// propagators per frozen Â) than the few steps they save, the remainder's error limiting the
+  /// steps to about delta anyway (docs/performance.md).
+  void set_long_slipping_steps(bool on) noexcept { long_slip_ = on; }
+
   /// The options of the stepper (validated at construction).
   const Options& options() const { return opt_; }
   /// Work counters of the last run.
@@ -176,7 +182,8 @@ class ExactLinearStepper {
   // err (delta / h)^5: the refreshes stay as frequent as with steps capped at delta.
   bool remainder_grown(Scalar err, Scalar h) const {
     using std::pow;
-    const Scalar scale = frozen_ && guarded_ && h > delta_ ? pow(delta_ / h, Scalar(5)) : Scalar(1);
+    const Scalar scale =
+        long_slip_ && frozen_ && guarded_ && h > delta_ ? pow(delta_ / h, Scalar(5)) : Scalar(1);
     return lp_.size() == 0 || err * scale > Scalar(refresh_error);
   }
 
@@ -343,7 +350,7 @@ class ExactLinearStepper {
   std::vector<Matrix> slip_bound_;
   std::uint64_t slip_generation_ = 0;
   Scalar slip_delta_ = 0;
-  bool frozen_ = false, slip_retry_ = false;
+  bool frozen_ = false, slip_retry_ = false, long_slip_ = false;
   Vector absr_;
   GuardVector free_g0_, free_s0_, free_g1_, free_s1_, rbound_;
   Vector absy_, bound_, yp_;
@@ -585,7 +592,7 @@ void ExactLinearStepper<System>::guard_bounds(int levels, const Matrix& rows,
 
 template <class System>
 int ExactLinearStepper<System>::choose_slip_level() {
-  if (!frozen_ || !guarded_ || slip_retry_ || !std::isfinite(delta_)) return 0;
+  if (!long_slip_ || !frozen_ || !guarded_ || slip_retry_ || !std::isfinite(delta_)) return 0;
   const Eigen::Index ng = ga_.size();
   for (Eigen::Index i = 0; i < ng; ++i)
     if (monitor_.disarmed(i)) return 0;
@@ -1065,7 +1072,9 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       }
       ++mode_steps_;
     } else {
-      const int slip_level = choose_slip_level();
+      // (only where the step control would go past delta: the bounds cost ~60 small products
+      // per frozen Â, more than the steps they save where the remainder limits them anyway)
+      const int slip_level = h > delta_ ? choose_slip_level() : 0;
       const Scalar cap = slip_level > 0 ? std::ldexp(delta_, slip_level) : delta_;
       h = std::min({h, opt_.max_step, guarded_ ? cap : opt_.max_step});
       // Long steps take the lengths 2^j delta only, whose stage propagators are kept.

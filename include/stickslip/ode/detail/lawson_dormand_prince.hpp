@@ -93,8 +93,9 @@ class LawsonDormandPrince {
     if (reuse) {
       const PropagatorKey key{h, flow.generation()};
       set_ = find_set(key);
-      if (set_ < 0 && last_key_.matches(key)) {
-        set_ = replace_set(key);
+      const bool stages = set_ >= 0 && sets_[static_cast<std::size_t>(set_)].has_stages;
+      if (!stages && last_key_.matches(key)) {
+        if (set_ < 0) set_ = replace_set(key);  // (else the set holds only the backward one)
         for (int i = 1; i < 6; ++i) {
           const auto iu = static_cast<std::size_t>(i);
           flow.expm(c(cs[iu] - cs[iu - 1]) * h, sets_[static_cast<std::size_t>(set_)].stage[iu - 1], st);
