@@ -15,11 +15,11 @@
 /// special cases.
 
 #include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/pade_exponential.hpp>
 #include <stickslip/ode/linear_part.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
 #include <cmath>
@@ -257,8 +257,8 @@ class AugmentedFlow {
       qh.bottomRightCorner(c, c) = tau * q.bottomRightCorner(c, c);
       // Balanced as in expm: the blocks hold Â and Âᵀ, as badly scaled as Â.
       balance_in_place(big_, big_scale_);
-      big_exp_ = big_.exp();
-      big_exp_ = big_scale_.asDiagonal() * big_exp_ * big_scale_.cwiseInverse().asDiagonal();
+      big_pade_.compute(big_, big_exp_);
+      unbalance(big_exp_, big_scale_);
       ++st.propagator_exponentials;
       if (j == 0) phi = big_exp_.bottomRightCorner(d, d);
       w.middleRows(j * d, d).noalias() =
@@ -266,15 +266,14 @@ class AugmentedFlow {
     }
   }
 
-  /// out = exp(Â tau) by Padé with scaling and squaring (MatrixFunctions) on the balanced
+  /// out = exp(Â tau) by Padé with scaling and squaring (PadeExponential) on the balanced
   /// generator: exp(Â tau) = D exp(B tau) D^-1, B = D^-1 Â D (see balance()), where ||B|| ~ the
   /// spectral radius of Â rather than ||Â|| (modal coordinates: ||Â||_1 ~ w_max^2 against
   /// w_max), so that the approximant needs few or no squarings. D is a power of 2 per component:
   /// the similarity is exact in floating point.
   void expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
-    build_ = bal_ * tau;
-    out = build_.exp();
-    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    pade_.compute(bal_ * tau, out);
+    unbalance(out, scale_);
     ++st.propagator_exponentials;
   }
 
@@ -282,9 +281,8 @@ class AugmentedFlow {
   /// 0 <= u <= tau, computed as D exp(|B| tau) D^-1 (|Â| = D |B| D^-1 for the positive diagonal D
   /// of the balancing), which needs no squarings where ||B|| tau is small.
   void abs_expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
-    build_ = bal_.cwiseAbs() * tau;
-    out = build_.exp();
-    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    pade_.compute(bal_.cwiseAbs() * tau, out);
+    unbalance(out, scale_);
     ++st.propagator_exponentials;
   }
 
@@ -360,6 +358,12 @@ class AugmentedFlow {
     balance_in_place(bal_, scale_);
     bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
   }
+  // m <- D m D^-1 for D = diag(scale) (back from the balanced coordinates; in place, no
+  // temporary).
+  static void unbalance(Matrix& m, const Vector& scale) {
+    m.array().colwise() *= scale.array();
+    m.array().rowwise() /= scale.transpose().array();
+  }
   // m <- D^-1 m D (see balance()), the powers of 2 of D into scale.
   static void balance_in_place(Matrix& m, Vector& scale) {
     const Eigen::Index d = m.rows();
@@ -404,6 +408,7 @@ class AugmentedFlow {
   int slot_ = -1;
   bool last_restored_ = false;
   Matrix a_, bal_, build_, big_, big_exp_;
+  PadeExponential<Scalar> pade_, big_pade_;  // the exponentials of Â (dim) and of Van Loan's blocks (2 dim)
   Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;

@@ -28,7 +28,6 @@
 #include <stickslip/ode/detail/step_control.hpp>
 
 #include <Eigen/Core>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include <array>
 #include <cmath>
