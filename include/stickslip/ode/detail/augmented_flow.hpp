@@ -33,7 +33,7 @@ struct ExactStepperStats {
   long exact_steps = 0;          ///< steps of the exact propagation (r_m = 0)
   long exponential_steps = 0;    ///< accepted steps of the exponential Runge-Kutta method
   long matvecs = 0;              ///< products of the augmented generator with a vector
-  long propagator_exponentials = 0;  ///< matrices exp(Â delta) computed (Padé, MatrixFunctions)
+  long propagator_exponentials = 0;  ///< matrices exp(Â delta) computed (Padé, PadeExponential)
   long eigen_decompositions = 0;  ///< eigenvalue computations of A_m (sampling rate)
   long linear_part_calls = 0;    ///< calls of System::linear_part
   long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
