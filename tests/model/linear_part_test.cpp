@@ -198,7 +198,7 @@ TEST(LinearPart, MovingSlippingContactIsFrozenWithARemainderOfOrderDeltaX) {
   LP lp;
   ASSERT_TRUE(sys.linear_part(mode, t, x, lp));
   EXPECT_FALSE(lp.exact);
-  EXPECT_FALSE(lp.has_affine_guards());
+  EXPECT_TRUE(lp.has_affine_guards());  // frozen (FrozenGuardRows... below)
   System::State f;
   sys.rhs(mode, t, x, f);
   // At the freezing state the remainder vanishes (b0 corrected there): round-off of the terms.
@@ -220,6 +220,49 @@ TEST(LinearPart, MovingSlippingContactIsFrozenWithARemainderOfOrderDeltaX) {
   EXPECT_NEAR(r[1] / r[2], 2.0, 0.1);
   // The X' = V row of the slipping damper is x' - q'^T psi_u(X) at the frozen X: exact.
   EXPECT_EQ(lp.A(X0, sys.xd_offset()), 1.0);
+}
+
+// Frozen affine guards of an inexact mode (slipping moving contact next to a stuck one): equal
+// to guards() at the freezing state (g0 is corrected there: round-off of the terms, kRoundOff);
+// the slipping damper's guard V = x' - q'^T psi_u(X) is linear in (q', x') at a fixed X, so its
+// row must reproduce guards() at states that differ in q' and x' only - an independent check of
+// the probed columns (round-off of the terms); a member-end guard is the row of the contact
+// coordinate (+1 for X, -1 for L - X, nothing else).
+TEST(LinearPart, FrozenGuardRowsOfAnInexactModeMatchTheGuardsAtTheFreezingState) {
+  Scene scene;  // moving contact, inertial N
+  System sys = scene.make();
+  const DamperStates mode = states(SlipP, Stick);
+  std::mt19937 rng(11);
+  double t = 0;
+  const System::State x = sample(sys, rng, t);
+  LP lp;
+  ASSERT_TRUE(sys.linear_part(mode, t, x, lp));
+  ASSERT_FALSE(lp.exact);
+  ASSERT_TRUE(lp.has_affine_guards());
+  EXPECT_LE(guard_error(sys, mode, t, x, lp), kRoundOff);
+  System::State xv = x;
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (Index k = 0; k < sys.num_modes(); ++k) xv[sys.num_modes() + k] *= 1.0 + 0.5 * n01(rng);
+  xv[sys.xd_offset()] += 0.1 * n01(rng);
+  System::GuardVector g;
+  sys.guards(mode, t, xv, g);
+  const Eigen::VectorXd xl = linear_components(sys, xv);
+  Eigen::VectorXd pred = lp.Gx * xl + lp.g0;
+  for (Index k = 0; k < lp.gc.cols(); ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    pred += std::cos(lp.omega[kk] * t) * lp.gc.col(k) + std::sin(lp.omega[kk] * t) * lp.gs.col(k);
+  }
+  const double scale = (lp.Gx.row(0).cwiseAbs() * xl.cwiseAbs())(0) + std::abs(lp.g0[0]) + std::abs(g[0]);
+  EXPECT_LE(std::abs(pred[0] - g[0]), kRoundOff * scale) << "slip guard V of damper 0";
+  const Index X0 = sys.contact_offset();
+  int end_rows = 0;
+  for (Index k = 0; k < lp.Gx.rows(); ++k) {
+    if (lp.Gx(k, X0) == 0.0) continue;
+    ++end_rows;
+    EXPECT_EQ(std::abs(lp.Gx(k, X0)), 1.0);
+    EXPECT_EQ(lp.Gx.row(k).cwiseAbs().sum(), 1.0) << "row " << k;
+  }
+  EXPECT_EQ(end_rows % 2, 0);
 }
 
 TEST(LinearPart, SpeedDependentLawsAndUserTimeFunctionsAreNotExact) {

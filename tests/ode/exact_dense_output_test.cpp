@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 namespace ode_exact_dense_output_test {  // named: the exact-stepper tests share a TU
@@ -79,6 +80,17 @@ struct Errors : stickslip::NullObserver {
 
 constexpr double kW = 2.0, kW2 = 2.5, kP0 = 0.5;
 
+// Steps of length h, all accepted (tolerances 1e6), samples every `interval` (0: none).
+stickslip::StepperOptions<double> steps_of_length(double h, double interval) {
+  stickslip::StepperOptions<double> opt;
+  opt.rtol = 1e6;
+  opt.atol = 1e6;
+  opt.initial_step = h;
+  opt.max_step = h;
+  opt.output_interval = interval;
+  return opt;
+}
+
 // One step of length h from the exact initial state, samples at theta = 1/3 and 2/3: their error
 // is the local error of the continuous extension alone. Dormand-Prince's extension has order 4,
 // i.e. local error O(h^5) (the step end's is O(h^6)); in the frame of Â it keeps that order
@@ -90,13 +102,7 @@ TEST(ExactLinearStepperDenseOutput, ContinuousExtensionHasLocalErrorOrderFive) {
   Detuned sys(kW, kW2, false);
   std::vector<double> err;
   for (double h : {0.4, 0.2, 0.1, 0.05}) {
-    stickslip::StepperOptions<double> opt;
-    opt.rtol = 1e6;  // one step of length h, accepted
-    opt.atol = 1e6;
-    opt.initial_step = h;
-    opt.max_step = h;
-    opt.output_interval = h / 3;
-    stickslip::ExactLinearStepper<Detuned> stepper(sys, opt);
+    stickslip::ExactLinearStepper<Detuned> stepper(sys, steps_of_length(h, h / 3));
     Errors log;
     log.sys = &sys;
     log.p0 = kP0;
@@ -175,6 +181,45 @@ TEST(ExactLinearStepperDenseOutput, EventInsideALawsonStepIsLocatedOnTheDenseOut
     std::printf("%s: event at t* %+.2e s, %ld dense points, %ld re-taken steps\n", name,
                 r.t - t_star, stepper.work().dense_outputs, stepper.work().event_reintegrations);
   }
+}
+
+// Regression (found on the blade runs): a step length whose propagator set was first created by
+// the dense output (holding only exp(-h Â)) never got its five stage propagators, so every later
+// step of that length carried its stages along the ladder instead. Fixed steps of one length h on
+// one Â (all accepted, Â never refreshed), once without samples and once with a
+// sample inside every step (interval 0.7 h, so the first falls in the first step, before the
+// second step asks for the stage propagators). Reference: the run without samples, whose count
+// of Padé exponentials is the mode's ladder plus the five stage propagators of h; the run with
+// samples adds exactly one, exp(-h Â) of the dense output (before the fix it had the ladder and
+// that one only: 3 against 8). With the stage propagators a carried vector costs one product:
+// 5 + (1 + .. + 5) = 20 per step, plus the dense output's and the samples' (measured 45 products
+// per step; 139 before the fix, where each of the 20 carried vectors walked the ladder). Asserted
+// below 70 per step, between the two.
+TEST(ExactLinearStepperDenseOutput, DenseOutputOnEveryStepKeepsTheStagePropagatorsOfItsLength) {
+  Detuned sys(kW, kW2, false);
+  const double h = 0.05, t_end = 2.0;
+  const auto run = [&](double interval) {
+    stickslip::ExactLinearStepper<Detuned> stepper(sys, steps_of_length(h, interval));
+    Errors log;
+    log.sys = &sys;
+    log.p0 = kP0;
+    const auto r = stepper.integrate(0, 0.0, sys.exact(0.0, kP0), t_end, log);
+    EXPECT_TRUE(r.ok()) << r.message;
+    EXPECT_EQ(r.stats.accepted_steps, 40);
+    EXPECT_EQ(stepper.work().linear_part_refreshes, 0);
+    return std::make_pair(stepper.work(), r.stats.accepted_steps);
+  };
+  const auto bare = run(0.0);
+  const auto sampled = run(0.7 * h);
+  std::printf("Padé exponentials: %ld without samples, %ld with; products per step %.1f, %.1f; "
+              "%ld dense outputs\n",
+              bare.first.propagator_exponentials, sampled.first.propagator_exponentials,
+              static_cast<double>(bare.first.matvecs) / static_cast<double>(bare.second),
+              static_cast<double>(sampled.first.matvecs) / static_cast<double>(sampled.second),
+              sampled.first.dense_outputs);
+  EXPECT_GT(sampled.first.dense_outputs, 30);
+  EXPECT_EQ(sampled.first.propagator_exponentials, bare.first.propagator_exponentials + 1);
+  EXPECT_LT(sampled.first.matvecs, 70 * sampled.second);
 }
 
 }  // namespace

@@ -699,6 +699,12 @@ class FrictionDampedSystem {
     dpsi_w_.col(i) = side * v.dpsi_w;
   }
 
+  /// Frozen affine guards of an inexact mode (issue #19: long Lawson steps while slipping): the
+  /// rows of guards() under the frozen solve of linear_part (X = lp_X_, mu = lp_mu_), Gx x_L + g(t)
+  /// into lp's Gx, g0, gc, gs, with g0 corrected so that they equal guards() at (t, x); an end
+  /// guard reads the frozen linear part's X (g = X, L - X). Probes as linear_part_by_probes does.
+  void frozen_guard_rows(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
+
   // ---- linear part per discrete mode: helpers -----------------------------------------------
   void allocate_linear_part_workspace() {
     lp_xs_.setZero(state_size());
@@ -2011,6 +2017,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
     return true;
   }
   linear_part_by_probes(mode, exact, moving_slip, lp);
+  if (!exact) frozen_guard_rows(mode, t, x, lp);
   lp.exact = exact;
   lp.version = lp_version_;
   if (exact) {
@@ -2096,6 +2103,73 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
   }
   if (options_.moving_contact)
     for (Index i = 0; i < D_; ++i) jacobian_column(mode, t, x, contact_offset() + i, J);
+}
+
+template <class Scalar_, class Law_, int Modes>
+void FrictionDampedSystem<Scalar_, Law_, Modes>::frozen_guard_rows(const Mode& mode, Scalar t, const State& x,
+                                                                   LinearPart<Scalar>& lp) {
+  using std::abs;
+  using std::cos;
+  using std::sin;
+  const Index P = linear_size(), G = num_guards(mode), K = static_cast<Index>(lp.omega.size());
+  lp.Gx.setZero(G, P);
+  lp.gc.setZero(G, K);
+  lp.gs.setZero(G, K);
+  // The frozen solve is affine in x_L, N0 and the load values: with the preloads zero, column j
+  // of Gx at x_L = e_j and load l's rows at unit load (as linear_part_by_probes); g0 from the
+  // guards at (t, x) below.
+  const bool refine = options_.refine_stale_factorisation;
+  options_.refine_stale_factorisation = false;
+  factor_unknowns_ = -1;
+  lp_xs_.setZero();
+  if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = lp_X_;
+  for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
+  const Index probed = 2 * n_ + 2 * D_, flight = 2 * num_separable_;
+  for (Index jj = 0; jj < probed + flight; ++jj) {
+    const Index j = jj < probed ? jj : flight_offset() + (jj - probed);
+    lp_xs_[j] = Scalar(1);
+    frozen_probe(mode, -1, G);
+    lp_xs_[j] = Scalar(0);
+    lp.Gx.col(j) = lp_g_.head(G);
+  }
+  for (Index l = 0; l < static_cast<Index>(loads_.size()); ++l) {
+    const Load& load = loads_[static_cast<std::size_t>(l)];
+    if (load.time_function) continue;
+    if (load.omega == Scalar(0)) continue;  // constant: in g0
+    frozen_probe(mode, l, G);
+    const Scalar cosine = load.amplitude * sin(load.phase), sine = load.amplitude * cos(load.phase);
+    const Index k = static_cast<Index>(std::find(lp.omega.begin(), lp.omega.end(), abs(load.omega)) - lp.omega.begin());
+    lp.gc.col(k) += cosine * lp_g_.head(G);
+    lp.gs.col(k) += (load.omega < 0 ? -sine : sine) * lp_g_.head(G);
+  }
+  for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
+  options_.refine_stale_factorisation = refine;
+  factor_unknowns_ = -1;
+  cache_valid_ = false;
+  // End guards (X, L - X; a constant 1 at an end that extends): rows of the contact coordinate
+  // (+1, -1; g0 below adds 0, L), which the probes hold at X* (their X columns are not probed).
+  Index k = 0;
+  for (Index i = 0; i < D_; ++i) {
+    k += contact_guards_of(mode, i);
+    if (!end_guards_of(mode, i)) continue;
+    const std::size_t iu = static_cast<std::size_t>(i);
+    for (Index e = 0; e < 2; ++e, ++k) {
+      lp.Gx.row(k).setZero();
+      lp.gc.row(k).setZero();
+      lp.gs.row(k).setZero();
+      if (end_kind_[iu][static_cast<std::size_t>(e)] != MemberEnd::Extend)
+        lp.Gx(k, contact_offset() + i) = e == 0 ? Scalar(1) : Scalar(-1);
+    }
+  }
+  // g0 = g(t, x) - Gx x_L - sum_k (gc_k cos w_k t + gs_k sin w_k t): the rows equal guards() at
+  // the refresh point.
+  fill_guards(mode, evaluate(mode, t, x), lp_g_.data());
+  lp_g_.head(G).noalias() -= lp.Gx * x.head(P);
+  lp.g0 = lp_g_.head(G);
+  for (Index kk = 0; kk < K; ++kk) {
+    const Scalar w = lp.omega[static_cast<std::size_t>(kk)];
+    lp.g0 -= cos(w * t) * lp.gc.col(kk) + sin(w * t) * lp.gs.col(kk);
+  }
 }
 
 // ---- separation: lift-off into flight, impacts, landings (docs/model.md "Separation") --------

@@ -56,7 +56,10 @@ struct LinearPart {
 
   /// Optional affine guards, all of them or none (empty Gx): g(t, x) = Gx x_L + g0 +
   /// sum_k (gc_k cos(w_k t) + gs_k sin(w_k t)) with the harmonic frequencies above; rows =
-  /// num_guards(m). Lets a method evaluate guards, and bound their rates, in closed form.
+  /// num_guards(m). Lets a method evaluate guards, and bound their rates, in closed form. In an
+  /// inexact mode (exact == false) they are the guards of the frozen linear part, g = Gx x_L +
+  /// ... + rho(t, x) with rho small near the point of the call and smooth along the solution: a
+  /// method uses them only to bound how far the guards can move over a step.
   Matrix Gx;
   Vector g0;   ///< constant part of the affine guards
   Matrix gc;   ///< cosine coefficients of the affine guards (rows x K)

@@ -15,11 +15,11 @@
 /// special cases.
 
 #include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/pade_exponential.hpp>
 #include <stickslip/ode/linear_part.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ struct ExactStepperStats {
   long exact_steps = 0;          ///< steps of the exact propagation (r_m = 0)
   long exponential_steps = 0;    ///< accepted steps of the exponential Runge-Kutta method
   long matvecs = 0;              ///< products of the augmented generator with a vector
-  long propagator_exponentials = 0;  ///< matrices exp(Â delta) computed (Padé, MatrixFunctions)
+  long propagator_exponentials = 0;  ///< matrices exp(Â delta) computed (Padé, PadeExponential)
   long eigen_decompositions = 0;  ///< eigenvalue computations of A_m (sampling rate)
   long linear_part_calls = 0;    ///< calls of System::linear_part
   long grazing_refinements = 0;  ///< exact evaluations spent by the grazing (Hermite) test
@@ -42,6 +42,8 @@ struct ExactStepperStats {
   long mode_cache_hits = 0;      ///< modes whose propagators came from the mode cache
   long dense_outputs = 0;        ///< points taken from a Lawson step's dense output
   long event_reintegrations = 0;  ///< trial steps re-taken to refine an event (Reintegrate)
+  long long_slip_steps = 0;      ///< Lawson steps longer than the guard sampling (frozen guards)
+  long slip_bound_rejections = 0;  ///< long Lawson steps re-taken at the guard sampling step
 };
 
 namespace detail {
@@ -255,8 +257,8 @@ class AugmentedFlow {
       qh.bottomRightCorner(c, c) = tau * q.bottomRightCorner(c, c);
       // Balanced as in expm: the blocks hold Â and Âᵀ, as badly scaled as Â.
       balance_in_place(big_, big_scale_);
-      big_exp_ = big_.exp();
-      big_exp_ = big_scale_.asDiagonal() * big_exp_ * big_scale_.cwiseInverse().asDiagonal();
+      big_pade_.compute(big_, big_exp_);
+      unbalance(big_exp_, big_scale_);
       ++st.propagator_exponentials;
       if (j == 0) phi = big_exp_.bottomRightCorner(d, d);
       w.middleRows(j * d, d).noalias() =
@@ -264,15 +266,23 @@ class AugmentedFlow {
     }
   }
 
-  /// out = exp(Â tau) by Padé with scaling and squaring (MatrixFunctions) on the balanced
+  /// out = exp(Â tau) by Padé with scaling and squaring (PadeExponential) on the balanced
   /// generator: exp(Â tau) = D exp(B tau) D^-1, B = D^-1 Â D (see balance()), where ||B|| ~ the
   /// spectral radius of Â rather than ||Â|| (modal coordinates: ||Â||_1 ~ w_max^2 against
   /// w_max), so that the approximant needs few or no squarings. D is a power of 2 per component:
   /// the similarity is exact in floating point.
   void expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
-    build_ = bal_ * tau;
-    out = build_.exp();
-    out = scale_.asDiagonal() * out * scale_.cwiseInverse().asDiagonal();
+    pade_.compute(bal_ * tau, out);
+    unbalance(out, scale_);
+    ++st.propagator_exponentials;
+  }
+
+  /// out = exp(|Â| tau) (|Â| entrywise), the entrywise bound |exp(Â u)| <= exp(|Â| tau) for
+  /// 0 <= u <= tau, computed as D exp(|B| tau) D^-1 (|Â| = D |B| D^-1 for the positive diagonal D
+  /// of the balancing), which needs no squarings where ||B|| tau is small.
+  void abs_expm(Scalar tau, Matrix& out, ExactStepperStats& st) {
+    pade_.compute(bal_.cwiseAbs() * tau, out);
+    unbalance(out, scale_);
     ++st.propagator_exponentials;
   }
 
@@ -348,6 +358,12 @@ class AugmentedFlow {
     balance_in_place(bal_, scale_);
     bnorm1_ = bal_.cwiseAbs().colwise().sum().maxCoeff();
   }
+  // m <- D m D^-1 for D = diag(scale) (back from the balanced coordinates; in place, no
+  // temporary).
+  static void unbalance(Matrix& m, const Vector& scale) {
+    m.array().colwise() *= scale.array();
+    m.array().rowwise() /= scale.transpose().array();
+  }
   // m <- D^-1 m D (see balance()), the powers of 2 of D into scale.
   static void balance_in_place(Matrix& m, Vector& scale) {
     const Eigen::Index d = m.rows();
@@ -392,6 +408,7 @@ class AugmentedFlow {
   int slot_ = -1;
   bool last_restored_ = false;
   Matrix a_, bal_, build_, big_, big_exp_;
+  PadeExponential<Scalar> pade_, big_pade_;  // the exponentials of Â (dim) and of Van Loan's blocks (2 dim)
   Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
   Vector term_, prod_;

@@ -28,7 +28,6 @@
 #include <stickslip/ode/detail/step_control.hpp>
 
 #include <Eigen/Core>
-#include <unsupported/Eigen/MatrixFunctions>
 
 #include <array>
 #include <cmath>
@@ -92,14 +91,17 @@ class LawsonDormandPrince {
     bool cached = false;
     if (reuse) {
       const PropagatorKey key{h, flow.generation()};
-      if (!stages_key_.matches(key) && last_key_.matches(key)) {
+      set_ = find_set(key);
+      const bool stages = set_ >= 0 && sets_[static_cast<std::size_t>(set_)].has_stages;
+      if (!stages && last_key_.matches(key)) {
+        if (set_ < 0) set_ = replace_set(key);  // (else the set holds only the backward one)
         for (int i = 1; i < 6; ++i) {
           const auto iu = static_cast<std::size_t>(i);
-          flow.expm(c(cs[iu] - cs[iu - 1]) * h, stage_[iu - 1], st);
+          flow.expm(c(cs[iu] - cs[iu - 1]) * h, sets_[static_cast<std::size_t>(set_)].stage[iu - 1], st);
         }
-        stages_key_ = key;
+        sets_[static_cast<std::size_t>(set_)].has_stages = true;
       }
-      cached = stages_key_.matches(key);
+      cached = set_ >= 0 && sets_[static_cast<std::size_t>(set_)].has_stages;
       last_key_ = key;
     }
     stages_of_run_step_ = reuse;
@@ -110,8 +112,9 @@ class LawsonDormandPrince {
       const auto iu = static_cast<std::size_t>(i);
       const Scalar dt = c(cs[iu] - cs[iu - 1]) * h;
       if (cached) {
-        carry(stage_[iu - 1], p_, st);
-        for (std::size_t j = 0; j < iu; ++j) carry(stage_[iu - 1], k_[j], st);
+        const Matrix& prop = sets_[static_cast<std::size_t>(set_)].stage[iu - 1];
+        carry(prop, p_, st);
+        for (std::size_t j = 0; j < iu; ++j) carry(prop, k_[j], st);
       } else {
         flow.expv(dt, p_, st);
         for (int j = 0; j < i; ++j) flow.expv(dt, k_[static_cast<std::size_t>(j)], st);
@@ -133,6 +136,10 @@ class LawsonDormandPrince {
     return weighted_rms(ys_.head(nx), y0.head(nx), y1.head(nx), rtol, atol);
   }
 
+  /// exp(h Â) y0 of the last step (the free flow of the linear part over it); valid until the
+  /// next step.
+  const Vector& free_flow() const noexcept { return p_; }
+
   /// Build the dense output of the last step (taken with `reuse`, no trial step since: the stage
   /// vectors must still be that step's) of size h from (y0, r0), r1 = R at its end; see the file
   /// comment.
@@ -143,10 +150,14 @@ class LawsonDormandPrince {
     STICKSLIP_ASSERT(stages_of_run_step_ && "LawsonDormandPrince: dense output of a trial step");
     const auto c = [](double v) { return static_cast<Scalar>(v); };
     const PropagatorKey key{h, flow.generation()};
-    if (!back_key_.matches(key)) {
-      flow.expm(-h, back_, st);
-      back_key_ = key;
+    int set = find_set(key);
+    if (set < 0) set = replace_set(key);
+    PropagatorSet& ps = sets_[static_cast<std::size_t>(set)];
+    if (!ps.has_back) {
+      flow.expm(-h, ps.back, st);
+      ps.has_back = true;
     }
+    const Matrix& back_ = ps.back;
     // K_j in the frame of the step start (K_1 = r0 exactly; K_2 has no weight below).
     for (std::size_t j : {2u, 3u, 4u, 5u}) carry(back_, k_[j], st);
     prod_.noalias() = back_ * r1;
@@ -196,13 +207,41 @@ class LawsonDormandPrince {
       return generation == other.generation && abs(other.h - h) <= Scalar(1e-12) * other.h;
     }
   };
-  // Stage propagators exp((c_i - c_{i-1}) h Â) of stages_key_, and the key of the last step with
-  // reuse.
-  std::array<Matrix, 5> stage_;
-  PropagatorKey stages_key_, last_key_;
-  // Dense output: exp(-h Â) of back_key_, and the vectors of Hairer's form.
-  Matrix back_;
-  PropagatorKey back_key_;
+  // Propagators of a few step lengths (the exponential steps of a run take one length, or the
+  // few lengths 2^j delta of long steps in modes with frozen guards): the stage propagators
+  // exp((c_i - c_{i-1}) h Â) (computed once a length comes twice in a row: last_key_ is the key
+  // of the last step with reuse) and the dense output's exp(-h Â), each built at first use.
+  struct PropagatorSet {
+    PropagatorKey key;
+    std::array<Matrix, 5> stage;
+    Matrix back;
+    bool has_stages = false, has_back = false;
+    std::uint64_t used = 0;
+  };
+  static constexpr std::size_t propagator_sets = 4;
+  std::array<PropagatorSet, propagator_sets> sets_;
+  std::uint64_t use_clock_ = 0;
+  int set_ = -1;
+  PropagatorKey last_key_;
+  int find_set(const PropagatorKey& key) {
+    for (std::size_t i = 0; i < propagator_sets; ++i)
+      if ((sets_[i].has_stages || sets_[i].has_back) && sets_[i].key.matches(key)) {
+        sets_[i].used = ++use_clock_;
+        return static_cast<int>(i);
+      }
+    return -1;
+  }
+  // The least recently used set, emptied and given to key.
+  int replace_set(const PropagatorKey& key) {
+    std::size_t lru = 0;
+    for (std::size_t i = 1; i < propagator_sets; ++i)
+      if (sets_[i].used < sets_[lru].used) lru = i;
+    sets_[lru].key = key;
+    sets_[lru].has_stages = sets_[lru].has_back = false;
+    sets_[lru].used = ++use_clock_;
+    return static_cast<int>(lru);
+  }
+  // Dense output: the vectors of Hairer's form.
   Vector w0_, dd_, q3_, q4_, q5_;
   Scalar dense_h_ = 0;
   bool stages_of_run_step_ = false;
