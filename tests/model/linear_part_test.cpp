@@ -222,6 +222,36 @@ TEST(LinearPart, MovingSlippingContactIsFrozenWithARemainderOfOrderDeltaX) {
   EXPECT_EQ(lp.A(X0, sys.xd_offset()), 1.0);
 }
 
+// A method that does not use the frozen guards of an inexact mode (want_inexact_guards = false:
+// ExactLinearStepper without long slipping steps) gets none, and the same A_m and b_m bit for bit
+// (the guards' probes run after those of A_m and restore the frozen solve's state); an exact mode
+// gives its guards regardless.
+TEST(LinearPart, InexactModeSkipsItsFrozenGuardsWhenTheMethodDoesNotWantThem) {
+  Scene scene;  // moving contact, inertial N
+  System sys = scene.make();
+  std::mt19937 rng(13);
+  double t = 0;
+  const System::State x = sample(sys, rng, t);
+  LP with, without;
+  without.want_inexact_guards = false;
+  const DamperStates slipping = states(SlipP, Stick);
+  ASSERT_TRUE(sys.linear_part(slipping, t, x, with));
+  System other = scene.make();  // a fresh system: nothing kept from the first call
+  ASSERT_TRUE(other.linear_part(slipping, t, x, without));
+  EXPECT_FALSE(without.exact);
+  EXPECT_TRUE(with.has_affine_guards());
+  EXPECT_FALSE(without.has_affine_guards());
+  EXPECT_EQ(with.A, without.A);
+  EXPECT_EQ(with.b0, without.b0);
+  EXPECT_EQ(with.bc, without.bc);
+  EXPECT_EQ(with.bs, without.bs);
+  LP stuck;
+  stuck.want_inexact_guards = false;
+  ASSERT_TRUE(other.linear_part(states(Stick, Stick), t, x, stuck));
+  EXPECT_TRUE(stuck.exact);
+  EXPECT_TRUE(stuck.has_affine_guards());
+}
+
 // Frozen affine guards of an inexact mode (slipping moving contact next to a stuck one): equal
 // to guards() at the freezing state (g0 is corrected there: round-off of the terms, kRoundOff);
 // the slipping damper's guard V = x' - q'^T psi_u(X) is linear in (q', x') at a fixed X, so its

@@ -518,7 +518,8 @@ class FrictionDampedSystem {
   /// CoulombLaw. Otherwise (exact = false) A_m is the fixed-contact form at the frozen X with the
   /// slip coefficients frozen at mu(V) of x (convective terms, slope coupling, the motion of X
   /// and time_function loads left to r_m), and b0 is corrected so that r_m(t, x) = 0. Affine
-  /// guards (the rows of guards(), Gx x_L + g(t)) in exact modes, none otherwise. With the energy
+  /// guards (the rows of guards(), Gx x_L + g(t)) in exact modes; in inexact modes those of the
+  /// frozen linear part (frozen_guard_rows) when lp.want_inexact_guards, none otherwise. With the energy
   /// audit, an exact mode also gives the audit's four rates as quadratic forms (quadrature_forms:
   /// external work, viscous and friction dissipation, slope work). `version`
   /// changes when the mode, a frozen X or a frozen slip coefficient changes. Returns false when
@@ -2017,7 +2018,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
     return true;
   }
   linear_part_by_probes(mode, exact, moving_slip, lp);
-  if (!exact) frozen_guard_rows(mode, t, x, lp);
+  if (!exact && lp.want_inexact_guards) frozen_guard_rows(mode, t, x, lp);
   lp.exact = exact;
   lp.version = lp_version_;
   if (exact) {

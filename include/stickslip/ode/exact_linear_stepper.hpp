@@ -406,6 +406,7 @@ template <class System>
 bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bool force,
                                                      StepperStats& st) {
   ++work_.linear_part_calls;
+  lp_.want_inexact_guards = long_slip_;  // (the frozen guards serve long slipping steps only)
   linear_ = sys_.linear_part(m, t, x_, lp_);
   if (!linear_) {
     // No linear form: Â = 0 (the clock only), the Lawson method is Dormand-Prince itself.

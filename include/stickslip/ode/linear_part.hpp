@@ -64,6 +64,10 @@ struct LinearPart {
   Vector g0;   ///< constant part of the affine guards
   Matrix gc;   ///< cosine coefficients of the affine guards (rows x K)
   Matrix gs;   ///< sine coefficients of the affine guards (rows x K)
+  /// Set by the method before the call: whether it uses the frozen affine guards of an inexact
+  /// mode. A system may leave Gx empty in an inexact mode when false (they cost it a probe of
+  /// its guards per component); exact modes give theirs regardless. Default true.
+  bool want_inexact_guards = true;
 
   /// Optional quadratic forms of the quadrature rates in an exact mode, one per quadrature or none
   /// (empty): x_Q[j]' = z^T Q_j z with Q_j = quadrature_forms[j] (square, size() + 1 + 2K; need
