@@ -700,10 +700,10 @@ class FrictionDampedSystem {
     dpsi_w_.col(i) = side * v.dpsi_w;
   }
 
-  /// Frozen affine guards of an inexact mode (issue #19: long Lawson steps while slipping): the
-  /// rows of guards() under the frozen solve of linear_part (X = lp_X_, mu = lp_mu_), Gx x_L + g(t)
-  /// into lp's Gx, g0, gc, gs, with g0 corrected so that they equal guards() at (t, x); an end
-  /// guard reads the frozen linear part's X (g = X, L - X). Probes as linear_part_by_probes does.
+  /// Frozen affine guards of an inexact mode (issue #19: long Lawson steps while slipping),
+  /// completed from the rows of guards() that linear_part_by_probes recorded under the frozen solve
+  /// (X = lp_X_, mu = lp_mu_): an end guard reads the frozen linear part's X (g = X, L - X), and
+  /// g0 is corrected so that the rows Gx x_L + g(t) equal guards() at (t, x).
   void frozen_guard_rows(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
 
   // ---- linear part per discrete mode: helpers -----------------------------------------------
@@ -715,20 +715,22 @@ class FrictionDampedSystem {
     lp_preload_.assign(static_cast<std::size_t>(D_), Scalar(0));
   }
 
-  /// A_m, b_m and (exact modes without end guards) the affine guards of `mode` by probing the
+  /// A_m, b_m and (exact modes without end guards; inexact ones with frozen_guards, completed by
+  /// frozen_guard_rows) the affine guards of `mode` by probing the
   /// frozen solve (solve_forces<true>: X = lp_X_, mu = lp_mu_), which is affine in x_L, N0 and the
   /// load values: b0 at x_L = 0; with the preloads set to zero, column j of A_m at x_L = e_j
   /// and load l's response at unit load (no differences, so nothing cancels). Each probe reuses
   /// the factorisation of the frozen matrix, which is refactorised at the first probe when a
   /// slipping contact moves (its rows are otherwise formed in element space) and after the last.
-  void linear_part_by_probes(const Mode& mode, bool exact, bool moving_slip, LinearPart<Scalar>& lp) {
+  void linear_part_by_probes(const Mode& mode, bool exact, bool moving_slip, bool frozen_guards,
+                             LinearPart<Scalar>& lp) {
     using std::cos;
     using std::sin;
     using std::abs;
     const Index P = linear_size(), probed = 2 * n_ + 2 * D_;  // X columns: zero (X frozen)
     bool end_guards = false;
     for (Index i = 0; i < D_; ++i) end_guards = end_guards || end_guards_of(mode, i);
-    const Index G = exact && !end_guards ? num_guards(mode) : 0;
+    const Index G = (exact && !end_guards) || (!exact && frozen_guards) ? num_guards(mode) : 0;
     lp.omega.clear();
     for (const Load& l : loads_)
       if (!l.time_function && l.omega != Scalar(0) &&
@@ -2017,8 +2019,9 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
     lp = lp_cache_;
     return true;
   }
-  linear_part_by_probes(mode, exact, moving_slip, lp);
-  if (!exact && lp.want_inexact_guards) frozen_guard_rows(mode, t, x, lp);
+  const bool frozen_guards = !exact && lp.want_inexact_guards;
+  linear_part_by_probes(mode, exact, moving_slip, frozen_guards, lp);
+  if (frozen_guards) frozen_guard_rows(mode, t, x, lp);
   lp.exact = exact;
   lp.version = lp_version_;
   if (exact) {
@@ -2109,44 +2112,9 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
 template <class Scalar_, class Law_, int Modes>
 void FrictionDampedSystem<Scalar_, Law_, Modes>::frozen_guard_rows(const Mode& mode, Scalar t, const State& x,
                                                                    LinearPart<Scalar>& lp) {
-  using std::abs;
   using std::cos;
   using std::sin;
-  const Index P = linear_size(), G = num_guards(mode), K = static_cast<Index>(lp.omega.size());
-  lp.Gx.setZero(G, P);
-  lp.gc.setZero(G, K);
-  lp.gs.setZero(G, K);
-  // The frozen solve is affine in x_L, N0 and the load values: with the preloads zero, column j
-  // of Gx at x_L = e_j and load l's rows at unit load (as linear_part_by_probes); g0 from the
-  // guards at (t, x) below.
-  const bool refine = options_.refine_stale_factorisation;
-  options_.refine_stale_factorisation = false;
-  factor_unknowns_ = -1;
-  lp_xs_.setZero();
-  if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = lp_X_;
-  for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
-  const Index probed = 2 * n_ + 2 * D_, flight = 2 * num_separable_;
-  for (Index jj = 0; jj < probed + flight; ++jj) {
-    const Index j = jj < probed ? jj : flight_offset() + (jj - probed);
-    lp_xs_[j] = Scalar(1);
-    frozen_probe(mode, -1, G);
-    lp_xs_[j] = Scalar(0);
-    lp.Gx.col(j) = lp_g_.head(G);
-  }
-  for (Index l = 0; l < static_cast<Index>(loads_.size()); ++l) {
-    const Load& load = loads_[static_cast<std::size_t>(l)];
-    if (load.time_function) continue;
-    if (load.omega == Scalar(0)) continue;  // constant: in g0
-    frozen_probe(mode, l, G);
-    const Scalar cosine = load.amplitude * sin(load.phase), sine = load.amplitude * cos(load.phase);
-    const Index k = static_cast<Index>(std::find(lp.omega.begin(), lp.omega.end(), abs(load.omega)) - lp.omega.begin());
-    lp.gc.col(k) += cosine * lp_g_.head(G);
-    lp.gs.col(k) += (load.omega < 0 ? -sine : sine) * lp_g_.head(G);
-  }
-  for (Index i = 0; i < D_; ++i) std::swap(lp_preload_[static_cast<std::size_t>(i)], dampers_[static_cast<std::size_t>(i)].preload);
-  options_.refine_stale_factorisation = refine;
-  factor_unknowns_ = -1;
-  cache_valid_ = false;
+  const Index P = linear_size(), G = lp.Gx.rows(), K = static_cast<Index>(lp.omega.size());
   // End guards (X, L - X; a constant 1 at an end that extends): rows of the contact coordinate
   // (+1, -1; g0 below adds 0, L), which the probes hold at X* (their X columns are not probed).
   Index k = 0;

@@ -157,10 +157,10 @@ class LawsonDormandPrince {
       flow.expm(-h, ps.back, st);
       ps.has_back = true;
     }
-    const Matrix& back_ = ps.back;
+    const Matrix& back = ps.back;
     // K_j in the frame of the step start (K_1 = r0 exactly; K_2 has no weight below).
-    for (std::size_t j : {2u, 3u, 4u, 5u}) carry(back_, k_[j], st);
-    prod_.noalias() = back_ * r1;
+    for (std::size_t j : {2u, 3u, 4u, 5u}) carry(back, k_[j], st);
+    prod_.noalias() = back * r1;
     ++st.matvecs;
     const Vector& k7 = prod_;
     // Hairer's form: v = w0 + theta (D + (1 - theta) (q3 + theta (q4 + (1 - theta) q5))) with
