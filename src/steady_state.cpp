@@ -1,5 +1,5 @@
 // stickslip::compiled: the steady-state solvers of FrictionDampedSystem<double> - one period's
-// run with its monodromy (run_period), Shooting and Continuation, every member.
+// run with its monodromy (run_period), Shooting, Continuation and SplitContinuation, every member.
 #include <stickslip/model/friction_damped_system.hpp>
 #include <stickslip/steady_state.hpp>
 
@@ -9,4 +9,5 @@ template PeriodRun<FrictionDampedSystem<double>> run_period<FrictionDampedSystem
     const FrictionDampedSystem<double>::State&, double, const ShootingOptions<double>&, bool);
 template class Shooting<FrictionDampedSystem<double>>;
 template class Continuation<FrictionDampedSystem<double>>;
+template class SplitContinuation<FrictionDampedSystem<double>>;
 }  // namespace stickslip

@@ -2,7 +2,7 @@
 // frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
 // state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
 // this thread:
-//   orbit_benchmark [--preloads a,b] [--frc-points n] [--quick] [--out file.json]
+//   orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--quick] [--out file.json]
 // Per preload (5 % modal damping, 200 rad/s, energy audit off, the example's shooting options):
 // one plain period and one variational period (steps, RHS evaluations); shooting from rest and
 // from transients of 10 and 60 periods, with the finite-difference and the variational
@@ -10,12 +10,14 @@
 // tolerance (periods and CPU); the variational period with Phi out of the error control and the
 // finite-difference monodromy, both monodromies against the latter; --quick skips the shootings
 // after 10 periods and from rest; and, with --frc-points n > 0, a frequency branch of n points
-// from 190 rad/s (its CPU per point, extrapolated to 200 points).
+// from 190 rad/s (its CPU per point, extrapolated to 200 points), with --frc-parts n in n parts
+// on n threads (stickslip::SplitContinuation; its elapsed time too).
 #include "blade_damper/blade_frc.hpp"
 
 #include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/steady_state.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -94,6 +96,7 @@ static_assert(stickslip::has_jacobian_v<System>, "FrictionDampedSystem provides 
 int main(int argc, char** argv) {
   std::vector<double> preloads{1.0, 26.0};
   int frc_points = 0;
+  int frc_parts = 1;
   bool quick = false;  // skip the shootings after 10 periods and from rest (the slow ones)
   std::string out = "orbit_benchmark.json";
   for (int i = 1; i < argc; ++i) {
@@ -104,12 +107,14 @@ int main(int argc, char** argv) {
       for (std::string v; std::getline(ss, v, ',');) preloads.push_back(std::stod(v));
     } else if (a == "--frc-points" && i + 1 < argc) {
       frc_points = std::stoi(argv[++i]);
+    } else if (a == "--frc-parts" && i + 1 < argc) {
+      frc_parts = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--quick") {
       quick = true;
     } else if (a == "--out" && i + 1 < argc) {
       out = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--quick] [--out file.json]\n");
+      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--quick] [--out file.json]\n");
       return 2;
     }
   }
@@ -228,12 +233,22 @@ int main(int argc, char** argv) {
       s.f_lo = 190 / (2 * M_PI);
       s.f_hi = 260 / (2 * M_PI);
       s.max_points = frc_points;
+      s.parts = frc_parts;
       const auto b = blade::frc_branch(scene, s, blade::frc_state_scale(scene, s), {});
       const double per_point = b.points.empty() ? NAN : b.cpu_seconds / static_cast<double>(b.points.size());
-      std::printf("  frequency branch: %zu points, %.2f s (%.3f s per point; 200 points ~%.0f s)\n", b.points.size(),
-                  b.cpu_seconds, per_point, 200 * per_point);
-      j << ",\n     \"frc\": {\"points\": " << b.points.size() << ", \"cpu_s\": " << blade::jnum(b.cpu_seconds)
-        << ", \"cpu_per_point_s\": " << blade::jnum(per_point) << ", \"status\": \"" << b.status << "\"}";
+      const double wall_per_point = b.points.empty() ? NAN : b.wall_seconds / static_cast<double>(b.points.size());
+      std::printf("  frequency branch in %d part(s): %s, %zu points, %.2f s CPU (%.3f s per point; 200 points ~%.0f s), "
+                  "%.2f s elapsed (200 points ~%.0f s)\n",
+                  frc_parts, b.status.c_str(), b.points.size(), b.cpu_seconds, per_point, 200 * per_point,
+                  b.wall_seconds, 200 * wall_per_point);
+      for (std::size_t q = 0; q < b.parts.size(); ++q)
+        std::printf("    part %zu from %.3f Hz: %s, %zu of %zu points kept%s, %.2f s CPU\n", q, b.parts[q].start_parameter,
+                    stickslip::to_string(b.parts[q].status), b.parts[q].kept, b.parts[q].points,
+                    b.parts[q].joined ? ", joined the next" : "", b.parts[q].cpu_seconds);
+      j << ",\n     \"frc\": {\"parts\": " << frc_parts << ", \"points\": " << b.points.size()
+        << ", \"cpu_s\": " << blade::jnum(b.cpu_seconds) << ", \"wall_s\": " << blade::jnum(b.wall_seconds)
+        << ", \"cpu_per_point_s\": " << blade::jnum(per_point) << ", \"wall_per_point_s\": " << blade::jnum(wall_per_point)
+        << ", \"status\": \"" << b.status << "\"}";
     }
     j << "}";
     std::fflush(stdout);

@@ -17,12 +17,15 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -145,7 +148,11 @@ struct FrcBranch {
   /// rows (f [Hz], all-stuck tip, frictionless tip), and their natural frequencies [Hz].
   std::vector<std::array<double, 3>> linear;
   std::vector<double> stuck_hz, free_hz;
-  double cpu_seconds = 0;
+  double cpu_seconds = 0;   ///< CPU time of every thread that worked on the branch
+  double wall_seconds = 0;  ///< elapsed time of the branch
+  /// With FrcSettings::parts > 1: per part, its start (start_parameter: the frequency in Hz),
+  /// the points kept and whether it joined the next (stickslip::SplitContinuation).
+  std::vector<stickslip::ContinuationPart<double>> parts;
   std::vector<FrcPoint> points;
 };
 
@@ -178,11 +185,12 @@ struct TipObserver : stickslip::NullObserver {
 /// The tip's extremes over one period of the orbit (a plain run of the converged orbit with
 /// samples every T / 512: a sampled sine is short of its peak by at most 1 - cos(pi / 512) =
 /// 2e-5 of the amplitude). Returns {min, max}.
-inline std::array<double, 2> orbit_tip_range(BladeScene& scene, const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
+inline std::array<double, 2> orbit_tip_range(const BladeScene& scene, BladeScene::System& sys,
+                                             const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
                                              const stickslip::ShootingOptions<double>& opt) {
   stickslip::StepperOptions<double> so = opt.stepper;
   so.output_interval = orbit.period / 512;
-  stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(*scene.system, so);
+  stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(sys, so);
   TipObserver obs;
   obs.scene = &scene;
   obs.on_step(orbit.t0, orbit.x0, orbit.mode);
@@ -224,6 +232,9 @@ struct FrcSettings {
   /// transient's end Newton converges in 1-4 runs or stalls (near a grazing): 30 (the library's
   /// default) cost 40-50 s per failing orbit here; 8, as the optimal-preload search.
   int max_newton_iterations = 8;
+  /// Parts of each branch run at once on their own threads (stickslip::SplitContinuation; 1:
+  /// one Continuation). Each part starts from its own transient and shooting.
+  int parts = 1;
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -251,12 +262,13 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
   return opt;
 }
 
-/// A start orbit of the scene at its parameters: the end of a transient from rest of `periods`
-/// (whole) excitation periods as the guess, then shooting from t0 = 0. Returns the orbit (check ok()).
-inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene& scene, int periods,
+/// A start orbit of the system at the excitation frequency `force_omega` [rad/s] (the system's
+/// own): the end of a transient from rest of `periods` (whole) excitation periods as the guess,
+/// then shooting from t0 = 0. Returns the orbit (check ok()).
+inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene::System& sys, double force_omega,
+                                                                      int periods,
                                                                       const stickslip::ShootingOptions<double>& opt) {
-  auto& sys = *scene.system;
-  const double T = 2 * M_PI / scene.parameters.force_omega;
+  const double T = 2 * M_PI / force_omega;
   BladeScene::System::State x0 = sys.initial_state();
   BladeScene::System::Mode mode = sys.requested_mode();
   if (!sys.make_consistent(mode, 0.0, x0)) throw std::runtime_error("frc: no consistent start state at rest");
@@ -300,10 +312,10 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
-  auto start = blade_start_orbit(scene, s.transient_periods, opt);
+  auto start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt);
   if (opt.monodromy == stickslip::MonodromyMethod::FiniteDifference && (!start.ok() || start.events.empty())) {
     opt.monodromy = stickslip::MonodromyMethod::Variational;
-    start = blade_start_orbit(scene, s.transient_periods, opt);
+    start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt);
   }
   b.monodromy = stickslip::to_string(opt.monodromy);
   if (!start.ok()) {
@@ -326,20 +338,19 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // Where the stick fraction changes (an event appears) the corrector can land on another
   // orbit, several steps away (seen at 1 N near 16 Hz): reject such a point and halve the step.
   co.max_corrector_distance = 2;
-  stickslip::Continuation<System> cont(
-      *scene.system,
-      [&scene, unit](System& sys, double par) {
-        BladeParameters q = scene.parameters;
-        q.force_omega = par * unit;
-        sys = make_blade_system(scene, q);
-      },
-      [unit](double par) { return 2 * M_PI / (par * unit); }, opt, co);
-  cont.start_mode(blade_start_mode);
-  cont.on_point([&](const stickslip::ContinuationPoint<System>& pt) {
+  auto set_parameter = [&scene, unit](System& sys, double par) {
+    BladeParameters q = scene.parameters;
+    q.force_omega = par * unit;
+    sys = make_blade_system(scene, q);
+  };
+  auto period_of = [unit](double par) { return 2 * M_PI / (par * unit); };
+  // One point of the curve from an orbit of the branch on `sys` (its tip range is one more run).
+  auto make_point = [&scene, &opt, &b, unit](System& sys, const stickslip::ContinuationPoint<System>& pt,
+                                             double& cpu_mark) {
     FrcPoint f;
     f.preload = b.preload;
     f.omega = pt.parameter * unit;
-    const auto range = orbit_tip_range(scene, pt.orbit, opt);
+    const auto range = orbit_tip_range(scene, sys, pt.orbit, opt);
     f.tip_amplitude = (range[1] - range[0]) / 2;
     f.tip_max_abs = std::max(std::abs(range[0]), std::abs(range[1]));
     f.stable = pt.orbit.floquet.stable;
@@ -355,15 +366,62 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     f.iterations = pt.orbit.iterations;
     f.residual = pt.orbit.residual;
     const double now = stickslip::detail::thread_cpu_seconds();
-    f.cpu_seconds = now - cpu_last;
-    cpu_last = now;
-    b.points.push_back(f);
-    if (progress) progress(f);
+    f.cpu_seconds = now - cpu_mark;
+    cpu_mark = now;
+    return f;
+  };
+  const auto wall0 = std::chrono::steady_clock::now();
+  auto elapsed = [&wall0] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  };
+  if (s.parts <= 1) {
+    stickslip::Continuation<System> cont(*scene.system, set_parameter, period_of, opt, co);
+    cont.start_mode(blade_start_mode);
+    cont.on_point([&](const stickslip::ContinuationPoint<System>& pt) {
+      b.points.push_back(make_point(*scene.system, pt, cpu_last));
+      if (progress) progress(b.points.back());
+    });
+    const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
+    b.status = stickslip::to_string(result.status);
+    b.message = result.message;
+    b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
+    b.wall_seconds = elapsed();
+    return b;
+  }
+  // In parts: a copy of the system per part; part 0 starts from the orbit above, part k from its
+  // own transient at its start frequency (on its own thread).
+  const auto n = static_cast<std::size_t>(s.parts);
+  std::vector<System> systems(n, *scene.system);
+  std::vector<System*> ptrs;
+  for (System& sys : systems) ptrs.push_back(&sys);
+  stickslip::SplitContinuation<System> split(ptrs, set_parameter, period_of, opt, co);
+  split.start_mode(blade_start_mode);
+  std::vector<std::vector<FrcPoint>> part_points(n);
+  std::vector<double> part_cpu(n, -1);
+  std::mutex progress_mutex;
+  split.on_point([&](std::size_t k, const stickslip::ContinuationPoint<System>& pt) {
+    if (part_cpu[k] < 0) part_cpu[k] = k == 0 ? cpu_last : stickslip::detail::thread_cpu_seconds();
+    part_points[k].push_back(make_point(*ptrs[k], pt, part_cpu[k]));
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    if (progress) progress(part_points[k].back());
   });
-  const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
-  b.status = stickslip::to_string(result.status);
-  b.message = result.message;
-  b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
+  const double cpu_before = stickslip::detail::thread_cpu_seconds() - cpu0;
+  const auto result = split.run([&](System& sys, double par) {
+    if (par == w_lo / unit) return stickslip::SplitContinuation<System>::Guess{start.mode, start.t0, start.x0};
+    const auto orbit = blade_start_orbit(sys, par * unit, s.transient_periods, opt);
+    return stickslip::SplitContinuation<System>::Guess{orbit.mode, orbit.t0, orbit.x0};
+  });
+  b.status = stickslip::to_string(result.branch.status);
+  b.message = result.branch.message;
+  b.parts = result.parts;
+  for (auto& part : b.parts) part.start_parameter *= unit / (2 * M_PI);  // in Hz
+  b.cpu_seconds = cpu_before;
+  for (std::size_t k = 0; k < n; ++k) {
+    b.cpu_seconds += result.parts[k].cpu_seconds;
+    for (std::size_t i = 0; i < result.parts[k].kept; ++i) b.points.push_back(part_points[k][i]);
+  }
+  *scene.system = systems[0];
+  b.wall_seconds = elapsed();
   return b;
 }
 
@@ -483,8 +541,13 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
                   f.stick_fraction[1], f.iterations, f.cpu_seconds);
       std::fflush(stdout);
     });
-    std::printf("frc N0 %g N: %s, %zu points, %.1f s%s%s\n", n0, b.status.c_str(), b.points.size(), b.cpu_seconds,
-                b.message.empty() ? "" : ": ", b.message.c_str());
+    std::printf("frc N0 %g N: %s, %zu points, %.1f s CPU, %.1f s elapsed%s%s\n", n0, b.status.c_str(), b.points.size(),
+                b.cpu_seconds, b.wall_seconds, b.message.empty() ? "" : ": ", b.message.c_str());
+    for (std::size_t k = 0; k < b.parts.size(); ++k)
+      std::printf("frc N0 %g N:   part %zu from %.3f Hz: %s, %zu of %zu points kept%s\n", n0, k,
+                  b.parts[k].start_parameter,
+                  stickslip::to_string(b.parts[k].status), b.parts[k].kept, b.parts[k].points,
+                  b.parts[k].joined ? ", joined the next" : "");
     b.linear = std::move(linear);
     b.stuck_hz = std::move(stuck_hz);
     b.free_hz = std::move(free_hz);

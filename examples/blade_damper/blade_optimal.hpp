@@ -90,7 +90,7 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
     // transient's end is the orbit to ~1e-8 and shooting confirms it in 1-2 runs, while Newton
     // from the orbit at another frequency (the golden section jumps by up to 24 % of the
     // bracket) took 20-64 runs (measured at N0 = 0.5 N).
-    stickslip::PeriodicOrbit<BladeScene::System> orbit = blade_start_orbit(scene, s.transient_periods, opt);
+    stickslip::PeriodicOrbit<BladeScene::System> orbit = blade_start_orbit(*scene.system, scene.parameters.force_omega, s.transient_periods, opt);
     if (!orbit.ok()) {
       // No orbit by shooting (Newton stalls, e.g. near a grazing): the steady state by a longer
       // transient (with 5 % damping 60 periods already decay a transient by e^-19), its last
@@ -110,7 +110,7 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
       orbit.period = 2 * M_PI / omega;
       r.steady = "transient";
     }
-    const auto range = orbit_tip_range(scene, orbit, opt);
+    const auto range = orbit_tip_range(scene, *scene.system, orbit, opt);
     r.tip_amplitude = (range[1] - range[0]) / 2;
     for (Eigen::Index i = 0; i < 2; ++i)
       r.stick_fraction[i] = orbit.ok() ? stickslip::orbit_contact_statistics(orbit, i).stick_fraction

@@ -101,6 +101,8 @@ Usage: blade_damper [options]
   --frc-points n         (after --frc) points per branch at most (default 300)
   --frc-newton n         (after --frc) Newton iterations of each branch's start orbit
                          (default 8)
+  --frc-parts n          (after --frc) each branch in n parts at once, one thread each
+                         (stickslip::SplitContinuation; default 1)
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)
@@ -191,6 +193,10 @@ Cli parse(int argc, char** argv) {
       if (!c.frc) throw std::invalid_argument("--frc-newton must follow --frc");
       c.frc->max_newton_iterations = std::stoi(need(i));
       if (c.frc->max_newton_iterations <= 0) throw std::invalid_argument("--frc-newton must be > 0");
+    } else if (a == "--frc-parts") {
+      if (!c.frc) throw std::invalid_argument("--frc-parts must follow --frc");
+      c.frc->parts = std::stoi(need(i));
+      if (c.frc->parts <= 0) throw std::invalid_argument("--frc-parts must be > 0");
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file steady_state.hpp
 /// \brief Umbrella header of the steady-state component: periodic orbits by shooting, monodromy
-/// with saltation matrices, Floquet multipliers and pseudo-arclength continuation.
+/// with saltation matrices, Floquet multipliers and pseudo-arclength continuation (in parts on
+/// several threads: SplitContinuation).
 
 #include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
@@ -9,6 +10,7 @@
 #include "stickslip/steady_state/period_run.hpp"
 #include "stickslip/steady_state/shooting.hpp"
 #include "stickslip/steady_state/shooting_options.hpp"
+#include "stickslip/steady_state/split_continuation.hpp"
 #include "stickslip/steady_state/variational_system.hpp"
 
 #ifdef STICKSLIP_COMPILED
@@ -22,5 +24,6 @@ extern template PeriodRun<FrictionDampedSystem<double>> run_period<FrictionDampe
     const FrictionDampedSystem<double>::State&, double, const ShootingOptions<double>&, bool);
 extern template class Shooting<FrictionDampedSystem<double>>;
 extern template class Continuation<FrictionDampedSystem<double>>;
+extern template class SplitContinuation<FrictionDampedSystem<double>>;
 }  // namespace stickslip
 #endif

@@ -858,7 +858,8 @@ void bind_steady_state(py::module_& m) {
       .value("Completed", ContinuationStatus::Completed)
       .value("MaxPoints", ContinuationStatus::MaxPoints)
       .value("StepTooSmall", ContinuationStatus::StepTooSmall)
-      .value("StartFailed", ContinuationStatus::StartFailed);
+      .value("StartFailed", ContinuationStatus::StartFailed)
+      .value("Stopped", ContinuationStatus::Stopped);
   py::class_<PyContinuationPoint>(m, "ContinuationPoint", "One point of a branch (docs/steady_state.md).")
       .def_readonly("parameter", &PyContinuationPoint::parameter, "the parameter p")
       .def_readonly("step", &PyContinuationPoint::step, "the arclength step that reached it (0 at the start)")

@@ -3,16 +3,21 @@
 //    receptance, every point stable with multipliers exp(lambda_k T);
 //  - a hardening Duffing oscillator: the branch passes both folds, the middle branch is unstable
 //    through +1, the fold frequencies agree with the one-harmonic balance, and det M = exp(-c T)
-//    (Liouville) at every point.
+//    (Liouville) at every point;
+//  - SplitContinuation: the same branches in parts on threads, joined (or not, where a part's
+//    start lies on the other side of a fold) into the serial branch.
 
 #include "steady_state/smooth_forced_systems.hpp"
 #include "steady_state/steady_state_test_support.hpp"
+
+#include <stickslip/steady_state/split_continuation.hpp>
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 
 #include <cmath>
+#include <algorithm>
 #include <complex>
 #include <vector>
 
@@ -23,27 +28,40 @@ using namespace steady_state_test;
 constexpr double kPi = 3.14159265358979323846;
 using cd = std::complex<double>;
 
-template <class Sys>
-stickslip::Continuation<Sys> frequency_continuation(Sys& sys, double w_lo, double w_hi,
-                                                    double max_step) {
+// Continuation options over the excitation frequency range [w_lo, w_hi].
+stickslip::ContinuationOptions<double> frequency_options(double w_lo, double w_hi, double max_step) {
   stickslip::ContinuationOptions<double> co;
   co.parameter_min = w_lo;
   co.parameter_max = w_hi;
   co.max_step = max_step;
   co.initial_step = 0.01;
   co.max_points = 2000;
+  return co;
+}
+
+template <class Sys>
+stickslip::Continuation<Sys> frequency_continuation(Sys& sys, double w_lo, double w_hi,
+                                                    double max_step) {
   return stickslip::Continuation<Sys>(
-      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
+      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {},
+      frequency_options(w_lo, w_hi, max_step));
 }
 
 // M = I, K = [2 -1; -1 2] (natural frequencies 1 and sqrt 3), C = 0.02 K + 0.01 I, force on
 // DOF 0. Closed form: q(t) = Re(H f e^{i w t}), H = (K - w^2 M + i w C)^-1, so at t0 = 0
 // q(0) = Re(H f), q'(0) = -w Im(H f), amplitude |(H f)_i|; monodromy exp(A T), A = [0 I; -K -C].
-TEST(SteadyStateContinuation, LinearTwoDofFrequencyResponseIsTheReceptance) {
-  using Sys = ForcedOscillator<2>;
-  Sys sys;
+// The linear 2-DOF scene of the receptance tests.
+ForcedOscillator<2> two_dof_scene() {
+  ForcedOscillator<2> sys;
   sys.K << 2, -1, -1, 2;
   sys.C = 0.02 * sys.K + 0.01 * Eigen::Matrix2d::Identity();
+  return sys;
+}
+
+// Every point of a branch of the 2-DOF scene against the closed-form receptance and multipliers;
+// returns the largest frequency reached.
+double expect_receptance(const ForcedOscillator<2>& sys,
+                         const std::vector<stickslip::ContinuationPoint<ForcedOscillator<2>>>& points) {
   Eigen::Matrix4d A = Eigen::Matrix4d::Zero();
   A.topRightCorner<2, 2>().setIdentity();
   A.bottomLeftCorner<2, 2>() = -sys.K;
@@ -51,13 +69,8 @@ TEST(SteadyStateContinuation, LinearTwoDofFrequencyResponseIsTheReceptance) {
   // The dynamic-size solver that floquet_multipliers instantiates anyway (a fixed 4 x 4 one cost
   // this unit ~8 s of compilation).
   const Eigen::Vector4cd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(A)).eigenvalues();
-
-  auto cont = frequency_continuation(sys, 0.5, 2.2, 1.0);
-  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.5);
-  ASSERT_TRUE(branch.completed()) << branch.message;
-  ASSERT_GE(branch.points.size(), 30u);
   double w_max = 0;
-  for (const auto& pt : branch.points) {
+  for (const auto& pt : points) {
     const double w = pt.parameter;
     SCOPED_TRACE(::testing::Message() << "omega " << w);
     w_max = std::max(w_max, w);
@@ -91,7 +104,20 @@ TEST(SteadyStateContinuation, LinearTwoDofFrequencyResponseIsTheReceptance) {
       EXPECT_LT(nearest, 1e-8) << "multiplier " << ref;
     }
   }
-  EXPECT_GT(w_max, 2.1);  // reached the end of the range through both resonances
+  return w_max;
+}
+
+// M = I, K = [2 -1; -1 2] (natural frequencies 1 and sqrt 3), C = 0.02 K + 0.01 I, force on
+// DOF 0. Closed form: q(t) = Re(H f e^{i w t}), H = (K - w^2 M + i w C)^-1, so at t0 = 0
+// q(0) = Re(H f), q'(0) = -w Im(H f), amplitude |(H f)_i|; monodromy exp(A T), A = [0 I; -K -C].
+TEST(SteadyStateContinuation, LinearTwoDofFrequencyResponseIsTheReceptance) {
+  using Sys = ForcedOscillator<2>;
+  Sys sys = two_dof_scene();
+  auto cont = frequency_continuation(sys, 0.5, 2.2, 1.0);
+  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.5);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  ASSERT_GE(branch.points.size(), 30u);
+  EXPECT_GT(expect_receptance(sys, branch.points), 2.1);  // reached the end of the range through both resonances
 }
 
 // One-harmonic balance of x'' + c x' + x + k3 x^3 = F cos(w t), x = A cos(w t - phi):
@@ -112,37 +138,24 @@ double parabola_vertex(double a0, double p0, double a1, double p1, double a2, do
   return coef[2] - coef[1] * coef[1] / (4 * coef[0]);
 }
 
-TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThroughPlusOne) {
-  using Sys = ForcedOscillator<1>;
-  const double c = 0.02, k3 = 0.1, F = 0.02;
-  Sys sys;
-  sys.C(0, 0) = c;
-  sys.k3 = k3;
-  sys.f(0) = F;
-  auto cont = frequency_continuation(sys, 0.9, 1.15, 0.05);
-  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
-  ASSERT_TRUE(branch.completed()) << branch.message;
-  const auto& pts = branch.points;
-  ASSERT_GE(pts.size(), 20u);
+constexpr double kDuffingC = 0.02, kDuffingK3 = 0.1, kDuffingF = 0.02;
 
-  // Turning points: where the parameter's direction along the branch reverses.
-  std::vector<std::size_t> turns;
-  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
-    const double before = pts[i].parameter - pts[i - 1].parameter;
-    const double after = pts[i + 1].parameter - pts[i].parameter;
-    if (before * after < 0) turns.push_back(i);
-  }
-  ASSERT_EQ(turns.size(), 2u) << "expected the upper and the lower fold";
+ForcedOscillator<1> duffing_scene() {
+  ForcedOscillator<1> sys;
+  sys.C(0, 0) = kDuffingC;
+  sys.k3 = kDuffingK3;
+  sys.f(0) = kDuffingF;
+  return sys;
+}
 
-  // Fold frequencies from the branch (parabola through the three points around each turn, in
-  // terms of the amplitude) vs the one-harmonic balance (local max and min of w_plus(A) on a
-  // fine grid). The balance neglects the third harmonic (relative size k3 A^2 / 32 / 8 ~ 4e-4 at
-  // A ~ 1), whose effect on the frequency is of second order, ~(3/4 k3 A^2)^2 / 32 ~ 2e-4;
-  // measured: 9e-5 and 1e-5. 5e-4 allowed (the fold spacing is 9e-3).
-  // w_plus falls from large values at small A (far right of the resonance) to its local min
-  // (the lower, jump-up fold), then rises to its local max (the upper, jump-down fold) before
-  // the two roots merge at the peak amplitude.
-  double hb_min = std::nan(""), hb_max = std::nan("");
+// The folds of the one-harmonic balance: the local min and max of w_plus(A) on a fine grid.
+// w_plus falls from large values at small A (far right of the resonance) to its local min (the
+// lower, jump-up fold), then rises to its local max (the upper, jump-down fold) before the two
+// roots merge at the peak amplitude.
+void balance_folds(double& hb_min, double& hb_max) {
+  const double c = kDuffingC, k3 = kDuffingK3, F = kDuffingF;
+  hb_min = std::nan("");
+  hb_max = std::nan("");
   double prev = hb_w_plus(0.05, c, k3, F), slope = -1;
   for (double A = 0.05 + 1e-5; A < 2.0; A += 1e-5) {
     const double w = hb_w_plus(A, c, k3, F);
@@ -153,6 +166,34 @@ TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThr
     slope = s;
     prev = w;
   }
+}
+
+// Turning points of a branch: where the parameter's direction along the branch reverses.
+template <class Points>
+std::vector<std::size_t> turning_points(const Points& pts) {
+  std::vector<std::size_t> turns;
+  for (std::size_t i = 1; i + 1 < pts.size(); ++i) {
+    const double before = pts[i].parameter - pts[i - 1].parameter;
+    const double after = pts[i + 1].parameter - pts[i].parameter;
+    if (before * after < 0) turns.push_back(i);
+  }
+  return turns;
+}
+
+// The Duffing branch over [0.9, 1.15] passes both folds at the balance's frequencies, unstable
+// through +1 between them, with det M = exp(-c T) at every point.
+void expect_duffing_branch(const std::vector<stickslip::ContinuationPoint<ForcedOscillator<1>>>& pts) {
+  ASSERT_GE(pts.size(), 20u);
+  const std::vector<std::size_t> turns = turning_points(pts);
+  ASSERT_EQ(turns.size(), 2u) << "expected the upper and the lower fold";
+
+  // Fold frequencies from the branch (parabola through the three points around each turn, in
+  // terms of the amplitude) vs the one-harmonic balance. The balance neglects the third harmonic
+  // (relative size k3 A^2 / 32 / 8 ~ 4e-4 at A ~ 1), whose effect on the frequency is of second
+  // order, ~(3/4 k3 A^2)^2 / 32 ~ 2e-4; measured: 9e-5 and 1e-5. 5e-4 allowed (the fold spacing
+  // is 9e-3).
+  double hb_min = 0, hb_max = 0;
+  balance_folds(hb_min, hb_max);
   ASSERT_FALSE(std::isnan(hb_min) || std::isnan(hb_max));
   double fold[2];
   for (int k = 0; k < 2; ++k) {
@@ -182,9 +223,165 @@ TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThr
     // 1e-8: central-difference Jacobian (h = 1e-6, cubic: error h^2 k3 ~ 1e-13) and the run
     // error rtol 1e-10 over one period.
     const double T = 2 * kPi / pts[i].parameter;
-    EXPECT_NEAR(pts[i].orbit.monodromy.determinant(), std::exp(-c * T), 1e-8);
+    EXPECT_NEAR(pts[i].orbit.monodromy.determinant(), std::exp(-kDuffingC * T), 1e-8);
   }
   EXPECT_EQ(changes, 2);
+}
+
+TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThroughPlusOne) {
+  using Sys = ForcedOscillator<1>;
+  Sys sys = duffing_scene();
+  auto cont = frequency_continuation(sys, 0.9, 1.15, 0.05);
+  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  expect_duffing_branch(branch.points);
+}
+
+// ---- SplitContinuation: one branch in parts on threads ------------------------------------------
+
+template <class Sys>
+stickslip::SplitContinuation<Sys> split_frequency_continuation(std::vector<Sys>& systems, double w_lo,
+                                                               double w_hi, double max_step) {
+  std::vector<Sys*> ptrs;
+  for (Sys& s : systems) ptrs.push_back(&s);
+  return stickslip::SplitContinuation<Sys>(
+      ptrs, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {},
+      frequency_options(w_lo, w_hi, max_step));
+}
+
+// No gap at a join: the step into the first point of each joined part after the first is at
+// most 1.1 times the longest step inside the parts (the next start lies within 0.1 |y_b - y_a|
+// of the step (y_a, y_b) that joins it, so |y_s - y_a| <= 1.1 |y_b - y_a|).
+template <class Result>
+void expect_no_gap_at_the_joins(const Result& result) {
+  const auto& pts = result.branch.points;
+  auto step = [&](std::size_t i) {
+    Eigen::VectorXd d(pts[i].orbit.x0.size() + 1);
+    d << pts[i].orbit.x0 - pts[i - 1].orbit.x0, pts[i].parameter - pts[i - 1].parameter;
+    return d.norm();
+  };
+  std::vector<std::size_t> joins;
+  for (std::size_t k = 0, first = 0; k + 1 < result.parts.size() && result.parts[k].joined; ++k)
+    joins.push_back(first += result.parts[k].kept);
+  double inside = 0;
+  for (std::size_t i = 1; i < pts.size(); ++i)
+    if (std::find(joins.begin(), joins.end(), i) == joins.end()) inside = std::max(inside, step(i));
+  for (std::size_t i : joins) {
+    ASSERT_LT(i, pts.size());
+    EXPECT_LE(step(i), 1.1 * inside) << "the join before point " << i;
+    EXPECT_NEAR(pts[i].step, step(i), 1e-12 * step(i));  // the joined point's step is that distance
+  }
+}
+
+// Three parts over [0.5, 2.2] (starts at 0.5, 1.067, 1.633; [1.2, 2.2] under the sanitizers),
+// each from rest: the linear scene has
+// one orbit per frequency, so every part joins the next, and the joined branch is the receptance
+// at every point (the closed form of the serial test), increasing in frequency, without a gap
+// at a join; the same downwards in two parts.
+TEST(SplitContinuation, LinearTwoDofCurveInPartsUpAndDownIsTheReceptanceWithEveryPartJoined) {
+  using Sys = ForcedOscillator<2>;
+#if defined(STICKSLIP_SANITIZED)
+  const double lo = 1.2;  // the second resonance only: the sanitizers ran the whole range in 9 s
+#else
+  const double lo = 0.5;
+#endif
+  std::vector<Sys> systems(3, two_dof_scene());
+  auto split = split_frequency_continuation(systems, lo, 2.2, 1.0);
+  const auto result = split.run([](Sys&, double) {
+    return stickslip::SplitContinuation<Sys>::Guess{0, 0.0, Sys::State::Zero()};
+  });
+  ASSERT_TRUE(result.completed()) << result.branch.message;
+  ASSERT_EQ(result.parts.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    SCOPED_TRACE(::testing::Message() << "part " << k);
+    EXPECT_NEAR(result.parts[k].start_parameter, lo + static_cast<double>(k) * (2.2 - lo) / 3, 1e-12);
+    EXPECT_EQ(result.parts[k].joined, k < 2);
+    EXPECT_GE(result.parts[k].kept, 3u);
+  }
+  const auto& pts = result.branch.points;
+  EXPECT_EQ(pts.size(), result.parts[0].kept + result.parts[1].kept + result.parts[2].kept);
+  for (std::size_t i = 1; i < pts.size(); ++i) EXPECT_GT(pts[i].parameter, pts[i - 1].parameter);
+  expect_no_gap_at_the_joins(result);
+  EXPECT_GT(expect_receptance(systems[0], pts), 2.1);
+
+  // Downwards (direction -1) over [1.2, 2.2], the second resonance, in two parts: the cut at 1.7,
+  // part 0 from 2.2, the joined branch decreasing in frequency and still the receptance.
+  stickslip::ContinuationOptions<double> down = frequency_options(1.2, 2.2, 1.0);
+  down.direction = -1;
+  std::vector<Sys> two(2, two_dof_scene());
+  stickslip::SplitContinuation<Sys> split_down({&two[0], &two[1]}, [](Sys& s, double w) { s.omega = w; },
+                                               [](double w) { return 2 * kPi / w; }, {}, down);
+  const auto result_down = split_down.run([](Sys&, double) {
+    return stickslip::SplitContinuation<Sys>::Guess{0, 0.0, Sys::State::Zero()};
+  });
+  ASSERT_TRUE(result_down.completed()) << result_down.branch.message;
+  EXPECT_NEAR(result_down.parts[0].start_parameter, 2.2, 1e-12);
+  EXPECT_NEAR(result_down.parts[1].start_parameter, 1.7, 1e-12);
+  EXPECT_TRUE(result_down.parts[0].joined);
+  const auto& dpts = result_down.branch.points;
+  ASSERT_GE(dpts.size(), 4u);
+  for (std::size_t i = 1; i < dpts.size(); ++i) EXPECT_LT(dpts[i].parameter, dpts[i - 1].parameter);
+  EXPECT_LT(dpts.back().parameter, 1.3);  // reached the lower end
+  expect_no_gap_at_the_joins(result_down);
+  expect_receptance(two[0], dpts);
+}
+
+// Two parts over [0.91, 1.15], cut at 1.03 between the folds (1.026 and 1.035 by the balance:
+// three orbits there). Part 1's
+// start orbit is picked by its guess, taken from the serial branch's point nearest the cut on each
+// of the three sheets (nearest 1.03): on the lower or the upper (stable) sheet, part 0's branch runs into it
+// (after both folds, or before the first) and the parts join; on the middle (unstable) sheet
+// part 0 crosses 1.03 there going down in frequency, against part 1's direction, so it does
+// not join, runs to the end alone and part 1 is dropped. Every time the joined branch is the
+// serial one: both folds at the balance's frequencies, the stability pattern, Liouville.
+TEST(SplitContinuation, DuffingBranchCutBetweenTheFoldsJoinsOnlyWhereTheBranchRunsOnInOneDirection) {
+  using Sys = ForcedOscillator<1>;
+  double hb_min = 0, hb_max = 0;
+  balance_folds(hb_min, hb_max);
+  const double cut = 1.03;
+  ASSERT_TRUE(hb_min < cut && cut < hb_max) << hb_min << " " << hb_max;
+  Sys serial_sys = duffing_scene();
+  const auto serial = frequency_continuation(serial_sys, 0.91, 1.15, 0.05).run(0, 0.0, Sys::State::Zero(), 0.91);
+  ASSERT_TRUE(serial.completed()) << serial.message;
+  const std::vector<std::size_t> turns = turning_points(serial.points);
+  ASSERT_EQ(turns.size(), 2u);
+  // The serial branch's point nearest the cut on sheet s (0 upper, 1 middle, 2 lower).
+  auto nearest_on_sheet = [&](int s) {
+    const std::size_t lo = s == 0 ? 0 : turns[static_cast<std::size_t>(s - 1)];
+    const std::size_t hi = s == 2 ? serial.points.size() : turns[static_cast<std::size_t>(s)] + 1;
+    std::size_t best = lo;
+    for (std::size_t i = lo; i < hi; ++i)
+      if (std::abs(serial.points[i].parameter - cut) < std::abs(serial.points[best].parameter - cut)) best = i;
+    return serial.points[best].orbit.x0;
+  };
+  for (int sheet = 0; sheet < 3; ++sheet) {
+    SCOPED_TRACE(::testing::Message() << "part 1 starts on sheet " << sheet << " (0 upper, 1 middle, 2 lower)");
+    const Sys::State guess = nearest_on_sheet(sheet);
+    std::vector<Sys> systems(2, duffing_scene());
+    auto split = split_frequency_continuation(systems, 0.91, 1.15, 0.05);
+    std::vector<int> first_stable(2, -1);  // each part writes its own entry (own thread)
+    split.on_point([&](std::size_t k, const stickslip::ContinuationPoint<Sys>& pt) {
+      if (first_stable[k] < 0) first_stable[k] = pt.orbit.floquet.stable ? 1 : 0;
+    });
+    const auto result = split.run([&](Sys&, double w) {
+      return stickslip::SplitContinuation<Sys>::Guess{0, 0.0, w == 0.91 ? Sys::State::Zero() : guess};
+    });
+    ASSERT_TRUE(result.completed()) << result.branch.message;
+    ASSERT_EQ(result.parts.size(), 2u);
+    EXPECT_NEAR(result.parts[1].start_parameter, cut, 1e-12);
+    EXPECT_EQ(result.parts[1].status, stickslip::ContinuationStatus::Completed);
+    const bool joins = sheet != 1;
+    EXPECT_EQ(result.parts[0].joined, joins);
+    EXPECT_EQ(result.parts[0].status,
+              joins ? stickslip::ContinuationStatus::Stopped : stickslip::ContinuationStatus::Completed);
+    EXPECT_EQ(result.parts[1].kept, joins ? result.parts[1].points : 0u);
+    ASSERT_EQ(result.dropped.size(), 2u);
+    EXPECT_TRUE(result.dropped[0].points.empty());
+    EXPECT_EQ(result.dropped[1].points.size(), joins ? 0u : result.parts[1].points);  // kept aside
+    EXPECT_EQ(first_stable[1], sheet == 1 ? 0 : 1);  // part 1 started on the sheet asked for
+    expect_no_gap_at_the_joins(result);
+    expect_duffing_branch(result.branch.points);
+  }
 }
 
 }  // namespace

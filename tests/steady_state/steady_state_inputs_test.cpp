@@ -69,6 +69,25 @@ TEST(SteadyStateInputs, ContinuationRejectsBadArgumentsNamingThem) {
                           {"Continuation::run", "p0", "3"});
 }
 
+TEST(SteadyStateInputs, SplitContinuationRejectsBadArgumentsNamingThem) {
+  Linear1 a, b;
+  auto set = [](Linear1& s, double w) { s.omega = w; };
+  auto period = [](double w) { return 2 * kPi / w; };
+  using SC = stickslip::SplitContinuation<Linear1>;
+  expect_invalid_argument([&] { SC({}, set, period); }, {"SplitContinuation", "systems", "empty"});
+  expect_invalid_argument([&] { SC({&a, nullptr}, set, period); }, {"SplitContinuation", "systems[k]", "1"});
+  expect_invalid_argument([&] { SC({&a, &b}, nullptr, period); }, {"SplitContinuation", "set_parameter"});
+  expect_invalid_argument([&] { SC({&a, &b}, set, nullptr); }, {"SplitContinuation", "period"});
+  stickslip::ContinuationOptions<double> co;
+  co.max_points = 0;
+  expect_invalid_argument([&] { SC({&a, &b}, set, period, {}, co); },
+                          {"SplitContinuation", "options.max_points"});
+  SC split({&a, &b}, set, period);
+  for (double tol : {0.0, 1.0, std::nan("")})
+    expect_invalid_argument([&] { split.join_tolerance(tol); }, {"SplitContinuation::join_tolerance", "tolerance"});
+  expect_invalid_argument([&] { split.run(nullptr); }, {"SplitContinuation::run", "start"});
+}
+
 // x'' + x = cos t over T = 2 pi: no periodic orbit (resonance without damping) and M = I, so
 // M - I is singular: SingularJacobian with the residual, not a silent point.
 TEST(SteadyStateInputs, UndampedResonanceIsASingularJacobian) {

@@ -70,7 +70,8 @@ enum class ContinuationStatus : std::uint8_t {
   Completed,     ///< the branch left the parameter range
   MaxPoints,     ///< options.max_points reached inside the range
   StepTooSmall,  ///< the corrector failed down to options.min_step (the last failure is reported)
-  StartFailed    ///< no orbit at the start parameter (the shooting failure is reported)
+  StartFailed,   ///< no orbit at the start parameter (the shooting failure is reported)
+  Stopped        ///< the stop_when rule ended the branch (SplitContinuation: a join)
 };
 
 /// Human-readable name of a continuation status.
@@ -80,6 +81,7 @@ inline const char* to_string(ContinuationStatus s) noexcept {
     case ContinuationStatus::MaxPoints: return "max_points";
     case ContinuationStatus::StepTooSmall: return "step_too_small";
     case ContinuationStatus::StartFailed: return "start_failed";
+    case ContinuationStatus::Stopped: return "stopped";
   }
   return "unknown";
 }
@@ -146,6 +148,8 @@ class Continuation {
   /// The mode at t0 for the state x (the previous mode given): e.g. a FrictionDampedSystem's
   /// make_consistent on a copy of x.
   using StartMode = std::function<Mode(System&, Scalar, const State&, const Mode&)>;
+  /// Ends the branch when it returns true for (last accepted point, newly corrected point).
+  using StopRule = std::function<bool(const ContinuationPoint<System>&, const ContinuationPoint<System>&)>;
   /// The result type.
   using Result = ContinuationResult<System>;
 
@@ -167,6 +171,10 @@ class Continuation {
   /// rule(system, t0, x, previous mode) (default: the mode given to run() throughout). An orbit
   /// is periodic when the run ends in the mode so decided.
   void start_mode(StartMode rule) { start_mode_ = std::move(rule); }
+
+  /// Ask `rule(last, next)` after each corrected point inside the range: true ends the run with
+  /// status Stopped before `next` is added (SplitContinuation joins its parts so).
+  void stop_when(StopRule rule) { stop_ = std::move(rule); }
 
   /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)).
   /// Throws std::invalid_argument for p0 outside the range, or (via Shooting) for bad x0/t0.
@@ -210,6 +218,7 @@ class Continuation {
   ContinuationOptions<Scalar> opt_;
   OnPoint on_point_;
   StartMode start_mode_;
+  StopRule stop_;
   std::vector<Eigen::Index> P_;
 };
 
@@ -360,13 +369,20 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       set_(sys_, p);
       return result;
     }
+    const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
+    ContinuationPoint<System> point{p_new, std::move(next), ds, changed};
+    if (stop_ && stop_(result.points.back(), point)) {
+      set_(sys_, p);
+      result.status = ContinuationStatus::Stopped;
+      result.message = "the stop rule ended the branch after p = " + detail::format_value(p);
+      return result;
+    }
     const Vector secant = pack(x_new, p_new) - pack(x, p);
     tau = secant / secant.norm();
     x = x_new;
     p = p_new;
     mode = mode_new;
-    const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
-    result.points.push_back({p, std::move(next), ds, changed});
+    result.points.push_back(std::move(point));
     if (on_point_) on_point_(result.points.back());
     if (iterations <= opt_.fast_iterations)
       ds = std::min(ds * opt_.growth, opt_.max_step);

@@ -1,0 +1,275 @@
+#pragma once
+/// \file split_continuation.hpp
+/// \brief SplitContinuation: one branch of forced periodic orbits followed in parts, each part on
+/// its own thread and its own copy of the system, joined where a part's branch runs into the next
+/// part's start orbit (a frequency-response curve on several cores).
+
+#include <stickslip/detail/cpu_time.hpp>
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/steady_state/continuation.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <exception>
+#include <functional>
+#include <future>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+/// What one part of a SplitContinuation did.
+template <class Scalar>
+struct ContinuationPart {
+  Scalar start_parameter = 0;  ///< the parameter of the part's start orbit
+  ContinuationStatus status = ContinuationStatus::Completed;  ///< how the part's run ended
+  std::string message;   ///< why it ended (empty when Completed)
+  std::size_t points = 0;  ///< points the part computed
+  std::size_t kept = 0;    ///< of them in the joined branch (0: the branch never reached the part)
+  /// The part's branch ran into the next part's start orbit and stopped there (status Stopped).
+  bool joined = false;
+  double cpu_seconds = 0;  ///< CPU time of the part's thread
+};
+
+/// The joined branch and the parts it was made of.
+template <class System>
+struct SplitContinuationResult {
+  /// The branch in branch order: part 0's points up to the join, then part 1's, ... Its status
+  /// is that of the last part it holds; a later part's first point has `step` = its distance
+  /// from the point before (in the arclength norm) and `stability_changed` against that point.
+  ContinuationResult<System> branch;
+  std::vector<ContinuationPart<typename System::Scalar>> parts;  ///< one per system, in order
+  /// Per part: its own run when the joined branch does not hold it (parts[k].kept == 0: an
+  /// earlier part ended without joining, e.g. StepTooSmall before the cut, or went past it on
+  /// another sheet), else empty - the pieces of the curve beyond where the branch ended.
+  std::vector<ContinuationResult<System>> dropped;
+  /// branch.completed().
+  bool completed() const noexcept { return branch.completed(); }
+};
+
+/// Pseudo-arclength continuation (Continuation) of one branch in n parts run at once: the
+/// parameter range [parameter_min, parameter_max] is cut into n equal intervals, and part k
+/// starts at the k-th cut in the direction of travel (options.direction), with its own system
+/// (`systems[k]`, on its own std::thread; part 0 on the calling thread) and the whole range
+/// allowed. Part k ends when its branch runs into part k + 1's start: a step (y_a, y_b) of part k
+/// (y = (x_P, p) as in Continuation's arclength norm) that crosses the start parameter p_s of
+/// part k + 1 in the direction of travel, passes within join_tolerance |y_b - y_a| of part k+1's
+/// start point y_s, and points the way part k + 1's first step does (positive scalar product).
+/// A part whose branch never meets the next start (the start orbit lies on another branch, e.g.
+/// the other side of a fold, or the start failed) goes on to the end of the range alone, and the
+/// later parts are dropped: the joined branch is the one that a single Continuation from the
+/// first cut traces, whatever the later starts found. The speed-up is up to n on n cores when
+/// every part joins. options.max_points bounds each part.
+///
+/// The systems must be independent objects (copies at the same settings): `set_parameter`,
+/// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
+/// Throws std::invalid_argument for an empty or null system list, empty callbacks, invalid
+/// options or a join tolerance outside (0, 1); an exception in a part's thread is rethrown from
+/// run() after every thread ended (and std::system_error when a thread cannot be started).
+template <class System>
+class SplitContinuation {
+ public:
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// The continuation of one part.
+  using Part = Continuation<System>;
+  /// The result type.
+  using Result = SplitContinuationResult<System>;
+  /// A start guess of the orbit at a part's start parameter: mode, t0 and state.
+  struct Guess {
+    Mode mode;     ///< the mode at t0
+    Scalar t0 = 0;  ///< the start time of the orbit
+    State x0;      ///< the guess of the orbit's state at t0
+  };
+  /// The guess at parameter p on a part's system (already set to p): e.g. the end of a transient.
+  using StartGuess = std::function<Guess(System&, Scalar)>;
+  /// Called after each accepted point of part k, on part k's thread.
+  using OnPoint = std::function<void(std::size_t, const ContinuationPoint<System>&)>;
+
+  /// Keeps the pointers: systems[k] is part k's system. Throws std::invalid_argument for an
+  /// empty list or a null entry, empty set_parameter or period, or invalid options.
+  SplitContinuation(std::vector<System*> systems, typename Part::SetParameter set_parameter,
+                    typename Part::PeriodOf period, ShootingOptions<Scalar> shooting = {},
+                    ContinuationOptions<Scalar> options = {})
+      : systems_(std::move(systems)), set_(std::move(set_parameter)), period_(std::move(period)),
+        shooting_(std::move(shooting)), opt_(options) {
+    static const std::string where = "SplitContinuation";
+    if (systems_.empty()) detail::throw_invalid(where, "systems must not be empty, size", 0);
+    for (std::size_t k = 0; k < systems_.size(); ++k)
+      if (!systems_[k]) detail::throw_invalid(where, "systems[k] must not be null, k", k);
+    if (!set_) throw std::invalid_argument("SplitContinuation: set_parameter must not be empty");
+    if (!period_) throw std::invalid_argument("SplitContinuation: period must not be empty");
+    opt_.validate(where);
+  }
+
+  /// The start-mode rule of every part (Continuation::start_mode).
+  void start_mode(typename Part::StartMode rule) { start_mode_ = std::move(rule); }
+  /// Call `f(k, point)` after each accepted point of part k (on part k's thread: synchronise).
+  void on_point(OnPoint f) { on_point_ = std::move(f); }
+  /// A step joins the next part when it passes within `tolerance` times its length of the next
+  /// start (default 0.1: a chord strays from a branch of curvature kappa by kappa |dy|^2 / 8).
+  /// Throws std::invalid_argument outside (0, 1).
+  void join_tolerance(Scalar tolerance) {
+    if (!(tolerance > 0 && tolerance < 1))
+      detail::throw_invalid("SplitContinuation::join_tolerance", "tolerance must be in (0, 1)", tolerance);
+    join_tol_ = tolerance;
+  }
+
+  /// Follow the branch in systems.size() parts; `start(system, p)` gives each part's guess.
+  /// Throws std::invalid_argument when start is empty.
+  Result run(const StartGuess& start);
+
+ private:
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  // A part's first two points in (x_P, p) (valid: it has two).
+  struct Head {
+    bool valid = false;
+    Vector y0, y1;
+  };
+  // (x_P, p) of a point, x_P the periodic components of ShootingOptions.
+  Vector pack(const ContinuationPoint<System>& pt) const {
+    const std::vector<Eigen::Index> P = shooting_.periodic_indices(pt.orbit.x0.size());
+    Vector y(static_cast<Eigen::Index>(P.size()) + 1);
+    for (std::size_t k = 0; k < P.size(); ++k) y[static_cast<Eigen::Index>(k)] = pt.orbit.x0[P[k]];
+    y[y.size() - 1] = pt.parameter;
+    return y;
+  }
+  // Does the step (a, b) of a part run into the next part's start?
+  bool joins(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b, Scalar p_next,
+             std::shared_future<Head>& next) const;
+
+  std::vector<System*> systems_;
+  typename Part::SetParameter set_;
+  typename Part::PeriodOf period_;
+  ShootingOptions<Scalar> shooting_;
+  ContinuationOptions<Scalar> opt_;
+  typename Part::StartMode start_mode_;
+  OnPoint on_point_;
+  Scalar join_tol_ = Scalar(0.1);
+};
+
+template <class System>
+bool SplitContinuation<System>::joins(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
+                                      Scalar p_next, std::shared_future<Head>& next) const {
+  const Scalar dir = Scalar(opt_.direction);
+  if (!(dir * (a.parameter - p_next) < 0 && dir * (b.parameter - p_next) >= 0)) return false;
+  const Head& head = next.get();  // waits for the next part's first two points
+  if (!head.valid) return false;
+  const Vector ya = pack(a), d = pack(b) - ya;
+  const Scalar len2 = d.squaredNorm();
+  if (!(len2 > 0) || !(d.dot(head.y1 - head.y0) > 0)) return false;
+  using std::sqrt;
+  const Scalar s = std::clamp((head.y0 - ya).dot(d) / len2, Scalar(0), Scalar(1));
+  return (ya + s * d - head.y0).norm() <= join_tol_ * sqrt(len2);
+}
+
+template <class System>
+auto SplitContinuation<System>::run(const StartGuess& start) -> Result {
+  if (!start) throw std::invalid_argument("SplitContinuation::run: start must not be empty");
+  const std::size_t n = systems_.size();
+  Result result;
+  result.parts.resize(n);
+  std::vector<ContinuationResult<System>> runs(n);
+  std::vector<std::promise<Head>> heads(n);
+  std::vector<std::shared_future<Head>> head_of(n);
+  for (std::size_t k = 0; k < n; ++k) head_of[k] = heads[k].get_future().share();
+  std::vector<std::exception_ptr> errors(n);
+  const Scalar width = (opt_.parameter_max - opt_.parameter_min) / Scalar(n);
+  auto start_parameter = [&](std::size_t k) {
+    return opt_.direction > 0 ? opt_.parameter_min + Scalar(k) * width : opt_.parameter_max - Scalar(k) * width;
+  };
+  auto part = [&](std::size_t k) {
+    ContinuationPart<Scalar>& report = result.parts[k];
+    const double cpu0 = detail::thread_cpu_seconds();
+    Head head;
+    bool published = false;
+    auto publish = [&] {
+      if (!published) heads[k].set_value(head);
+      published = true;
+    };
+    try {
+      System& sys = *systems_[k];
+      const Scalar p0 = start_parameter(k);
+      report.start_parameter = p0;
+      Part cont(sys, set_, period_, shooting_, opt_);
+      if (start_mode_) cont.start_mode(start_mode_);
+      std::size_t count = 0;
+      cont.on_point([&](const ContinuationPoint<System>& pt) {
+        if (count == 0) head.y0 = pack(pt);
+        if (count == 1) {
+          head.y1 = pack(pt);
+          head.valid = true;
+          publish();
+        }
+        ++count;
+        if (on_point_) on_point_(k, pt);
+      });
+      if (k + 1 < n) {
+        const Scalar p_next = start_parameter(k + 1);
+        std::shared_future<Head> next = head_of[k + 1];
+        cont.stop_when([this, p_next, next](const ContinuationPoint<System>& a,
+                                            const ContinuationPoint<System>& b) mutable {
+          return joins(a, b, p_next, next);
+        });
+      }
+      set_(sys, p0);
+      const Guess g = start(sys, p0);
+      runs[k] = cont.run(g.mode, g.t0, g.x0, p0);
+      report.status = runs[k].status;
+      report.message = runs[k].message;
+      report.points = runs[k].points.size();
+      report.joined = runs[k].status == ContinuationStatus::Stopped;
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+    head.valid = head.valid && !errors[k];
+    publish();
+    report.cpu_seconds = detail::thread_cpu_seconds() - cpu0;
+  };
+
+  std::vector<std::thread> threads;
+  threads.reserve(n - 1);
+  try {
+    for (std::size_t k = 1; k < n; ++k) threads.emplace_back(part, k);
+  } catch (...) {  // no thread for part k: the parts started end without joining it, then throw
+    for (std::size_t k = threads.size() + 1; k < n; ++k) heads[k].set_value(Head{});
+    for (auto& t : threads) t.join();
+    throw;
+  }
+  part(0);
+  for (auto& t : threads) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+
+  // Join: part 0's points, then each next part's while the one before joined.
+  ContinuationResult<System>& branch = result.branch;
+  result.dropped.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    auto& pts = runs[k].points;
+    if (!pts.empty() && !branch.points.empty()) {
+      const ContinuationPoint<System>& last = branch.points.back();
+      pts.front().step = (pack(pts.front()) - pack(last)).norm();
+      pts.front().stability_changed = pts.front().orbit.floquet.stable != last.orbit.floquet.stable;
+    }
+    result.parts[k].kept = pts.size();
+    for (auto& pt : pts) branch.points.push_back(std::move(pt));
+    branch.status = runs[k].status;
+    branch.message = runs[k].message;
+    if (!result.parts[k].joined) {
+      for (std::size_t j = k + 1; j < n; ++j) result.dropped[j] = std::move(runs[j]);
+      break;
+    }
+  }
+  return result;
+}
+
+}  // namespace stickslip
