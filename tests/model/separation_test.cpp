@@ -30,25 +30,28 @@ namespace separation_test {
 
 using namespace model_test;
 
-/// The system with its transition() observed: the state just before and just after each one.
-class Recording : public System {
- public:
-  using System::System;
+/// An observer of the transitions: the state just before and just after each one (the steppers
+/// call on_step at the event time before the transition, then on_event with the state after).
+struct TransitionLog {
   struct Snapshot {
     double t;
     DamperStates from, to;
-    State before, after;
+    System::State before, after;
   };
   std::vector<Snapshot> snapshots;
+  System::State last;  // the state of the last on_step
+  double t_last = 0;
 
-  TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x) {
-    Snapshot s{t, mode, mode, x, x};
-    const TransitionAction action = System::transition(mode, triggered, t, x);
-    s.to = mode;
-    s.after = x;
-    snapshots.push_back(s);
-    return action;
+  bool on_step(double t, const System::State& x, const DamperStates&) {
+    last = x;
+    t_last = t;
+    return true;
   }
+  void on_event(const EventRecord<double, DamperStates>& r, const System::State& after) {
+    EXPECT_EQ(t_last, r.t) << "no step ended at the event";
+    snapshots.push_back({r.t, r.from, r.to, last, after});
+  }
+  bool on_sample(double, const System::State&, const DamperStates&) { return true; }
 };
 
 struct Scene {
@@ -71,7 +74,7 @@ struct Scene {
 
 /// Kinetic energy of the mode and of the damper (x' along u, y' along the normal: y_d' in
 /// flight, a q' in contact at a fixed contact point).
-double kinetic(const Recording& sys, const Scene& sc, const DamperStates& mode, const System::State& x) {
+double kinetic(const System& sys, const Scene& sc, const DamperStates& mode, const System::State& x) {
   const double qd = x[1], xd = x[sys.xd_offset()];
   const double yd = mode[0] == ContactState::Separated ? x[sys.flight_offset() + 1] : sc.a[0] * qd;
   return 0.5 * qd * qd + 0.5 * sc.m * (xd * xd + yd * yd);
@@ -86,20 +89,21 @@ RunOptions<double> run_options() {
   return run;
 }
 
-template <class Stepper>
-HybridResult<double, System::State, DamperStates> run(Recording& sys, double t_end, double* E0) {
+/// A run from the consistent start with `integrator`, its transitions in `log`.
+SimulationResult<System> run(System& sys, double t_end, double* E0, TransitionLog& log,
+                             Integrator integrator = Integrator::DormandPrince54) {
   System::State x = sys.initial_state();
   DamperStates mode = sys.requested_mode();
   EXPECT_TRUE(sys.make_consistent(mode, 0.0, x));
   *E0 = sys.mechanical_energy(mode, 0.0, x);
-  Stepper stepper(sys, run_options().stepper);
-  NullObserver none;
-  return stepper.integrate(mode, 0.0, x, t_end, none);
+  RunOptions<double> opt = run_options();
+  opt.integrator = integrator;
+  return simulate(sys, mode, 0.0, x, t_end, opt, log);
 }
 
 /// The shapes at the contact, read through point_shape (the load-vector path of the model,
 /// not its impact code).
-void read_shapes(const Recording& sys, Scene& sc) {
+void read_shapes(const System& sys, Scene& sc) {
   sc.a = sys.point_shape(sc.frame.platform, sc.X0, LoadDirection::Transverse);
   sc.b = sys.point_shape(sc.frame.platform, sc.X0, LoadDirection::Axial);
 }
@@ -107,7 +111,7 @@ void read_shapes(const Recording& sys, Scene& sc) {
 /// Normal force of the damper in contact state `s` at (t, x), from the contact rows solved
 /// here: q'' = -omega^2 q + F(t) psi_F + N a - f b (one undamped mode), N + m a q'' = N0, and
 /// slip f = -sigma mu_k N, or stick f - m b q'' = k x.
-double normal_force(const Recording& sys, const Scene& sc, ContactState s, double t, const System::State& x,
+double normal_force(const System& sys, const Scene& sc, ContactState s, double t, const System::State& x,
                     double mu_k) {
   const double w2 = sys.omega_squared()[0];
   const double psiF = sys.point_shape(sc.frame.blade, 0.05, LoadDirection::GlobalX)[0];
@@ -126,7 +130,7 @@ double normal_force(const Recording& sys, const Scene& sc, ContactState s, doubl
 
 /// Gap acceleration in flight at a fixed contact, a q'' - N0/m, with q'' of the mode alone (the
 /// damper in flight exerts no force): q'' = -omega^2 q + F(t) psi_F.
-double flight_gap_acceleration(const Recording& sys, const Scene& sc, double t, const System::State& x) {
+double flight_gap_acceleration(const System& sys, const Scene& sc, double t, const System::State& x) {
   const double psiF = sys.point_shape(sc.frame.blade, 0.05, LoadDirection::GlobalX)[0];
   const double qdd = -sys.omega_squared()[0] * x[0] + sys.loads()[0].value(t) * psiF;
   return sc.a[0] * qdd - sc.preload / sc.m;
@@ -138,12 +142,12 @@ struct Counts {
 
 /// Checks every lift-off and impact of a run of one damper (see the file comment); returns
 /// the counts (a landing that leaves at once counts as a landing and a lift-off).
-Counts check_transitions(const Recording& sys, const Scene& sc, double e, double mu_s, double mu_k) {
+Counts check_transitions(const System& sys, const TransitionLog& log, const Scene& sc, double e, double mu_s, double mu_k) {
   Counts c;
   const Index yo = sys.flight_offset(), o = sys.energy_offset(), xo = sys.x_offset(), xdo = sys.xd_offset();
   const double a = sc.a[0], b = sc.b[0], m = sc.m;
   std::size_t k = 0;  // next impact of the log
-  for (const auto& s : sys.snapshots) {
+  for (const auto& s : log.snapshots) {
     const System::State &x0 = s.before, &x1 = s.after;
     if (s.from[0] != ContactState::Separated) {
       if (s.to[0] != ContactState::Separated) continue;
@@ -212,12 +216,13 @@ Counts check_transitions(const Recording& sys, const Scene& sc, double e, double
 TEST(Separation, ImpactsKeepMomentumAndObeyNewtonAndCoulombWithTheBookedLoss) {
   Scene sc;
   const double e = 0.5, mu_s = 0.35, mu_k = 0.3;
-  Recording sys(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
+  System sys(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
   read_shapes(sys, sc);
   double E0 = 0;
-  const auto r = run<HybridStepper<Recording, DormandPrince54>>(sys, 0.3, &E0);
+  TransitionLog log;
+  const auto r = run(sys, 0.3, &E0, log);
   ASSERT_TRUE(r.ok()) << r.message;
-  const Counts c = check_transitions(sys, sc, e, mu_s, mu_k);
+  const Counts c = check_transitions(sys, log, sc, e, mu_s, mu_k);
   EXPECT_GE(c.lift_offs, 2);
   EXPECT_GE(c.bounces, 10);
   EXPECT_GE(c.landings, 1);
@@ -233,12 +238,13 @@ TEST(Separation, ElasticImpactsConserveEnergyOverManyImpacts) {
   Scene sc;
   PointDamper<double> d = sc.damper(1.0, 0.0, 0.0);
   d.landing_speed = 0.0;
-  Recording sys(sc.frame.frame, sc.frame.basis, {d}, sc.load(20.0));
+  System sys(sc.frame.frame, sc.frame.basis, {d}, sc.load(20.0));
   read_shapes(sys, sc);
   double E0 = 0;
-  const auto r = run<HybridStepper<Recording, DormandPrince54>>(sys, 0.5, &E0);
+  TransitionLog log;
+  const auto r = run(sys, 0.5, &E0, log);
   ASSERT_TRUE(r.ok()) << r.message;
-  const Counts c = check_transitions(sys, sc, 1.0, 0.0, 0.0);
+  const Counts c = check_transitions(sys, log, sc, 1.0, 0.0, 0.0);
   EXPECT_GE(c.bounces, 20);
   EXPECT_EQ(c.landings, 0);
   double booked = 0;
@@ -253,12 +259,13 @@ TEST(Separation, ElasticImpactsConserveEnergyOverManyImpacts) {
 TEST(Separation, PlasticImpactsLandWithoutAZenoStop) {
   Scene sc;
   const double mu_s = 0.35, mu_k = 0.3;
-  Recording sys(sc.frame.frame, sc.frame.basis, {sc.damper(0.0, mu_s, mu_k)}, sc.load(20.0));
+  System sys(sc.frame.frame, sc.frame.basis, {sc.damper(0.0, mu_s, mu_k)}, sc.load(20.0));
   read_shapes(sys, sc);
   double E0 = 0;
-  const auto r = run<HybridStepper<Recording, DormandPrince54>>(sys, 0.3, &E0);
+  TransitionLog log;
+  const auto r = run(sys, 0.3, &E0, log);
   ASSERT_TRUE(r.ok()) << r.message;
-  const Counts c = check_transitions(sys, sc, 0.0, mu_s, mu_k);
+  const Counts c = check_transitions(sys, log, sc, 0.0, mu_s, mu_k);
   EXPECT_EQ(c.bounces, 0);
   EXPECT_GE(c.landings, 2);
   EXPECT_GE(c.lift_offs, c.landings);
@@ -273,14 +280,15 @@ TEST(Separation, PlasticImpactsLandWithoutAZenoStop) {
 TEST(Separation, ExponentialIntegratorAgreesWithDormandPrince) {
   Scene sc;
   const double e = 0.5, mu_s = 0.35, mu_k = 0.3;
-  Recording dp(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
-  Recording ex(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
+  System dp(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
+  System ex(sc.frame.frame, sc.frame.basis, {sc.damper(e, mu_s, mu_k)}, sc.load(20.0));
   read_shapes(ex, sc);
   double E0 = 0, E0x = 0;
-  const auto rd = run<HybridStepper<Recording, DormandPrince54>>(dp, 0.3, &E0);
-  const auto rx = run<ExactLinearStepper<Recording>>(ex, 0.3, &E0x);
+  TransitionLog log_dp, log;
+  const auto rd = run(dp, 0.3, &E0, log_dp);
+  const auto rx = run(ex, 0.3, &E0x, log, Integrator::Exponential);
   ASSERT_TRUE(rx.ok()) << rx.message;
-  const Counts c = check_transitions(ex, sc, e, mu_s, mu_k);
+  const Counts c = check_transitions(ex, log, sc, e, mu_s, mu_k);
   EXPECT_GE(c.bounces, 10);
   const auto bal = ex.energy_balance(rx.mode, rx.t, rx.x, E0x);
   EXPECT_NEAR(bal.residual, 0.0, 1e-8 * (std::abs(bal.mechanical) + bal.external_work));
@@ -304,18 +312,30 @@ TEST(Separation, ExponentialIntegratorAgreesWithDormandPrince) {
 // far more than 1 % of the run here).
 TEST(Separation, StatisticsCountFlightsBouncesAndLandings) {
   Scene sc;
-  Recording sys(sc.frame.frame, sc.frame.basis, {sc.damper(0.5, 0.35, 0.3)}, sc.load(20.0));
+  System sys(sc.frame.frame, sc.frame.basis, {sc.damper(0.5, 0.35, 0.3)}, sc.load(20.0));
   System::State x = sys.initial_state();
   DamperStates mode = sys.requested_mode();
   ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
   const double t_end = 0.3;
-  DamperStatistics<System> stats(sys, mode, 0.0, x, {0.0, t_end, 2 * std::acos(-1.0) / sc.frame.basis.omega()[0]});
-  HybridStepper<Recording, DormandPrince54> stepper(sys, run_options().stepper);
-  const auto r = stepper.integrate(mode, 0.0, x, t_end, stats);
+  // The statistics and the transition log observe the same run.
+  struct Both {
+    DamperStatistics<System> stats;
+    TransitionLog log;
+    bool on_step(double t, const System::State& y, const DamperStates& m) {
+      return stats.on_step(t, y, m) && log.on_step(t, y, m);
+    }
+    void on_event(const EventRecord<double, DamperStates>& rec, const System::State& after) {
+      stats.on_event(rec, after);
+      log.on_event(rec, after);
+    }
+    bool on_sample(double t, const System::State& y, const DamperStates& m) { return stats.on_sample(t, y, m); }
+  } both{DamperStatistics<System>(sys, mode, 0.0, x, {0.0, t_end, 2 * std::acos(-1.0) / sc.frame.basis.omega()[0]}), {}};
+  const auto r = simulate(sys, mode, 0.0, x, t_end, run_options(), both);
   ASSERT_TRUE(r.ok()) << r.message;
+  const auto& stats = both.stats;
   double flying = 0, since = -1;
   Index impacts = 0;
-  for (const auto& s : sys.snapshots) {
+  for (const auto& s : both.log.snapshots) {
     impacts += s.from[0] == ContactState::Separated ? 1 : 0;
     const bool was = s.from[0] == ContactState::Separated, is = s.to[0] == ContactState::Separated;
     if (!was && is) since = s.t;
@@ -381,8 +401,9 @@ TEST(Separation, TwoDampersOnTheBladeKeepTheAuditClosed) {
 /// The one-mode scene with a free-sliding damper (no spring) between two walls at the platform's
 /// ends, started sliding at V0 with the platform loaded at the mode's frequency.
 struct WallRun {
-  Recording sys;
-  HybridResult<double, System::State, DamperStates> result;
+  System sys;
+  TransitionLog log;
+  SimulationResult<System> result;
   double E0 = 0;
 };
 
@@ -393,25 +414,23 @@ std::unique_ptr<WallRun> run_between_walls(double e_wall, double mu, double t_en
   d.finish_end = MemberEnd::Wall;
   d.wall_restitution = e_wall;
   d.initial_state = ContactState::SlipPositive;
-  auto w = std::make_unique<WallRun>(WallRun{Recording(sc.frame.frame, sc.frame.basis, {d}, sc.load(0.5)), {}, 0.0});
+  auto w = std::make_unique<WallRun>(WallRun{System(sc.frame.frame, sc.frame.basis, {d}, sc.load(0.5)), {}, {}, 0.0});
   System::State x = w->sys.initial_state();
   x[w->sys.xd_offset()] = 0.2;  // V0 = 0.2 m/s: the 0.04 m platform is crossed in 0.2 s
   DamperStates mode = w->sys.requested_mode();
   EXPECT_TRUE(w->sys.make_consistent(mode, 0.0, x));
   w->E0 = w->sys.mechanical_energy(mode, 0.0, x);
-  HybridStepper<Recording, DormandPrince54> stepper(w->sys, run_options().stepper);
-  NullObserver none;
-  w->result = stepper.integrate(mode, 0.0, x, t_end, none);
+  w->result = simulate(w->sys, mode, 0.0, x, t_end, run_options(), w->log);
   return w;
 }
 
 /// Every wall impact of the run, checked from its snapshot: X at an end (to the event tolerance),
 /// positions unchanged, V = x' - b(X) q' reversed by Newton's law V -> -e V (b from point_shape).
-int check_walls(const Recording& sys, double e_wall) {
+int check_walls(const System& sys, const TransitionLog& log, double e_wall) {
   int walls = 0;
   const double L = 0.04;
   const Index xo = sys.contact_offset(), xdo = sys.xd_offset();
-  for (const auto& s : sys.snapshots) {
+  for (const auto& s : log.snapshots) {
     const double X = s.before[xo];
     if (s.from[0] == ContactState::Separated || (X > 1e-9 && X < L - 1e-9)) continue;
     ++walls;
@@ -437,7 +456,7 @@ int check_walls(const Recording& sys, double e_wall) {
 TEST(MemberEnds, ElasticWallsReverseTheSlidingVelocityAndKeepTheEnergy) {
   const auto w = run_between_walls(1.0, 0.0, 1.0);
   ASSERT_TRUE(w->result.ok()) << w->result.message;
-  EXPECT_GE(check_walls(w->sys, 1.0), 4);
+  EXPECT_GE(check_walls(w->sys, w->log, 1.0), 4);
   double booked = 0;
   for (const auto& imp : w->sys.impacts()) {
     EXPECT_TRUE(imp.wall);
@@ -453,7 +472,7 @@ TEST(MemberEnds, ElasticWallsReverseTheSlidingVelocityAndKeepTheEnergy) {
 TEST(MemberEnds, InelasticWallsBookTheirLossAndTheAuditCloses) {
   const auto w = run_between_walls(0.5, 0.05, 1.0);
   ASSERT_TRUE(w->result.ok()) << w->result.message;
-  EXPECT_GE(check_walls(w->sys, 0.5), 2);
+  EXPECT_GE(check_walls(w->sys, w->log, 0.5), 2);
   const auto bal = w->sys.energy_balance(w->result.mode, w->result.t, w->result.x, w->E0);
   EXPECT_GT(bal.impact_loss, 0.0);
   EXPECT_NEAR(bal.residual, 0.0, 1e-8 * (std::abs(bal.mechanical) + std::abs(bal.external_work) + bal.impact_loss));
