@@ -53,12 +53,13 @@ TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
     ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
     // The transient: 60 periods (1.9 s); the slowest mode decays as exp(-zeta w1 t), w1 ~ 230 rad/s:
     // ~1e-9 of the start amplitude left (under the sanitizers see kTransientPeriods).
-    const stickslip::StepperOptions<double> tight = stickslip::ShootingOptions<double>::tight_stepper();
-    stickslip::HybridStepper<System, stickslip::DormandPrince54> stepper(sys, tight);
+    // (simulate(): DOPRI as compiled in stickslip::compiled, no stepper instantiated here)
+    stickslip::RunOptions<double> tight;
+    tight.stepper = stickslip::ShootingOptions<double>::tight_stepper();
     const double t_a = kTransientPeriods * T;
-    const auto transient = stepper.integrate(mode, 0.0, x0, t_a);
+    const auto transient = stickslip::simulate(sys, mode, 0.0, x0, t_a, tight);
     ASSERT_TRUE(transient.ok()) << transient.message;
-    const auto next = stepper.integrate(transient.mode, t_a, transient.x, t_a + T);
+    const auto next = stickslip::simulate(sys, transient.mode, t_a, transient.x, t_a + T, tight);
     ASSERT_TRUE(next.ok()) << next.message;
 
     // Periodic: q, q', x_d, x_d'. The contact coordinates X are a neutral direction (a contact
