@@ -27,6 +27,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace blade {
@@ -233,8 +234,9 @@ struct FrcSettings {
   /// default) cost 40-50 s per failing orbit here; 8, as the optimal-preload search.
   int max_newton_iterations = 8;
   /// Parts of each branch run at once on their own threads (stickslip::SplitContinuation; 1:
-  /// one Continuation). Each part starts from its own transient and shooting.
-  int parts = 1;
+  /// one Continuation). Each part starts from its own transient and shooting. Default: the
+  /// machine's hardware threads, at most 4.
+  int parts = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 4);
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -500,7 +502,12 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
                                        [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
-      << ", \"cpu_s\": " << jnum(b.cpu_seconds)
+      << ", \"cpu_s\": " << jnum(b.cpu_seconds) << ", \"wall_s\": " << jnum(b.wall_seconds) << ", \"parts\": [";
+    for (std::size_t q = 0; q < b.parts.size(); ++q)
+      j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
+        << stickslip::to_string(b.parts[q].status) << "\", \"points\": " << b.parts[q].points
+        << ", \"kept\": " << b.parts[q].kept << ", \"joined\": " << (b.parts[q].joined ? "true" : "false") << "}";
+    j << "]"
       << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
     if (peak != b.points.end())
       j << ", \"peak_tip_m\": " << jnum(peak->tip_amplitude) << ", \"peak_frequency_hz\": " << jnum(peak->omega / (2 * M_PI));

@@ -102,7 +102,8 @@ Usage: blade_damper [options]
   --frc-newton n         (after --frc) Newton iterations of each branch's start orbit
                          (default 8)
   --frc-parts n          (after --frc) each branch in n parts at once, one thread each
-                         (stickslip::SplitContinuation; default 1)
+                         (stickslip::SplitContinuation; default: the hardware
+                         threads, at most 4; 1: one Continuation)
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)

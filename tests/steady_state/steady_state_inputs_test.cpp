@@ -76,6 +76,7 @@ TEST(SteadyStateInputs, SplitContinuationRejectsBadArgumentsNamingThem) {
   using SC = stickslip::SplitContinuation<Linear1>;
   expect_invalid_argument([&] { SC({}, set, period); }, {"SplitContinuation", "systems", "empty"});
   expect_invalid_argument([&] { SC({&a, nullptr}, set, period); }, {"SplitContinuation", "systems[k]", "1"});
+  expect_invalid_argument([&] { SC({&a, &b, &a}, set, period); }, {"SplitContinuation", "distinct", "2"});
   expect_invalid_argument([&] { SC({&a, &b}, nullptr, period); }, {"SplitContinuation", "set_parameter"});
   expect_invalid_argument([&] { SC({&a, &b}, set, nullptr); }, {"SplitContinuation", "period"});
   stickslip::ContinuationOptions<double> co;

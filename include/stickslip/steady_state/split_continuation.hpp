@@ -68,9 +68,10 @@ struct SplitContinuationResult {
 ///
 /// The systems must be independent objects (copies at the same settings): `set_parameter`,
 /// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
-/// Throws std::invalid_argument for an empty or null system list, empty callbacks, invalid
-/// options or a join tolerance outside (0, 1); an exception in a part's thread is rethrown from
-/// run() after every thread ended (and std::system_error when a thread cannot be started).
+/// Throws std::invalid_argument for an empty system list, a null or repeated system, empty
+/// callbacks, invalid options or a join tolerance outside (0, 1); an exception in a part's thread
+/// is rethrown from run() after every thread ended (and std::system_error when a thread cannot be
+/// started).
 template <class System>
 class SplitContinuation {
  public:
@@ -96,7 +97,7 @@ class SplitContinuation {
   using OnPoint = std::function<void(std::size_t, const ContinuationPoint<System>&)>;
 
   /// Keeps the pointers: systems[k] is part k's system. Throws std::invalid_argument for an
-  /// empty list or a null entry, empty set_parameter or period, or invalid options.
+  /// empty list, a null or repeated entry, empty set_parameter or period, or invalid options.
   SplitContinuation(std::vector<System*> systems, typename Part::SetParameter set_parameter,
                     typename Part::PeriodOf period, ShootingOptions<Scalar> shooting = {},
                     ContinuationOptions<Scalar> options = {})
@@ -104,8 +105,12 @@ class SplitContinuation {
         shooting_(std::move(shooting)), opt_(options) {
     static const std::string where = "SplitContinuation";
     if (systems_.empty()) detail::throw_invalid(where, "systems must not be empty, size", 0);
-    for (std::size_t k = 0; k < systems_.size(); ++k)
+    for (std::size_t k = 0; k < systems_.size(); ++k) {
       if (!systems_[k]) detail::throw_invalid(where, "systems[k] must not be null, k", k);
+      for (std::size_t j = 0; j < k; ++j)  // one object on two threads: a data race
+        if (systems_[j] == systems_[k])
+          detail::throw_invalid(where, "systems[k] must be distinct objects (copies), k", k);
+    }
     if (!set_) throw std::invalid_argument("SplitContinuation: set_parameter must not be empty");
     if (!period_) throw std::invalid_argument("SplitContinuation: period must not be empty");
     opt_.validate(where);
