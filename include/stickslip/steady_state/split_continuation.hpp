@@ -62,9 +62,10 @@ struct SplitContinuationResult {
 /// start point y_s, and points the way part k + 1's first step does (positive scalar product).
 /// A part whose branch never meets the next start (the start orbit lies on another branch, e.g.
 /// the other side of a fold, or the start failed) goes on to the end of the range alone, and the
-/// later parts are dropped: the joined branch is the one that a single Continuation from the
-/// first cut traces, whatever the later starts found. The speed-up is up to n on n cores when
-/// every part joins. options.max_points bounds each part.
+/// later parts are dropped: the joined branch follows the curve that a single Continuation from
+/// the first cut traces (its points differ where the parts' steps do), whatever the later starts
+/// found. The speed-up is up to n on n cores when every part joins. options.max_points bounds
+/// each part.
 ///
 /// The systems must be independent objects (copies at the same settings): `set_parameter`,
 /// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
