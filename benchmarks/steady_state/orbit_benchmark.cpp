@@ -242,9 +242,7 @@ int main(int argc, char** argv) {
                   frc_parts, b.status.c_str(), b.points.size(), b.cpu_seconds, per_point, 200 * per_point,
                   b.wall_seconds, 200 * wall_per_point);
       for (std::size_t q = 0; q < b.parts.size(); ++q)
-        std::printf("    part %zu from %.3f Hz: %s, %zu of %zu points kept%s, %.2f s CPU\n", q, b.parts[q].start_parameter,
-                    stickslip::to_string(b.parts[q].status), b.parts[q].kept, b.parts[q].points,
-                    b.parts[q].joined ? ", joined the next" : "", b.parts[q].cpu_seconds);
+        std::printf("    %s, %.2f s CPU\n", blade::frc_part_line(q, b.parts[q]).c_str(), b.parts[q].cpu_seconds);
       j << ",\n     \"frc\": {\"parts\": " << frc_parts << ", \"points\": " << b.points.size()
         << ", \"cpu_s\": " << blade::jnum(b.cpu_seconds) << ", \"wall_s\": " << blade::jnum(b.wall_seconds)
         << ", \"cpu_per_point_s\": " << blade::jnum(per_point) << ", \"wall_per_point_s\": " << blade::jnum(wall_per_point)

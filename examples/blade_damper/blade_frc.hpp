@@ -399,10 +399,11 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   stickslip::SplitContinuation<System> split(ptrs, set_parameter, period_of, opt, co);
   split.start_mode(blade_start_mode);
   std::vector<std::vector<FrcPoint>> part_points(n);
-  std::vector<double> part_cpu(n, -1);
+  // Per part, the thread CPU at its last point (part k > 0: from the start of its transient, so
+  // that its first point carries its start as part 0's does).
+  std::vector<double> part_cpu(n, cpu_last);
   std::mutex progress_mutex;
   split.on_point([&](std::size_t k, const stickslip::ContinuationPoint<System>& pt) {
-    if (part_cpu[k] < 0) part_cpu[k] = k == 0 ? cpu_last : stickslip::detail::thread_cpu_seconds();
     part_points[k].push_back(make_point(*ptrs[k], pt, part_cpu[k]));
     std::lock_guard<std::mutex> lock(progress_mutex);
     if (progress) progress(part_points[k].back());
@@ -410,6 +411,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   const double cpu_before = stickslip::detail::thread_cpu_seconds() - cpu0;
   const auto result = split.run([&](System& sys, double par) {
     if (par == w_lo / unit) return stickslip::SplitContinuation<System>::Guess{start.mode, start.t0, start.x0};
+    part_cpu[static_cast<std::size_t>(&sys - systems.data())] = stickslip::detail::thread_cpu_seconds();
     const auto orbit = blade_start_orbit(sys, par * unit, s.transient_periods, opt);
     return stickslip::SplitContinuation<System>::Guess{orbit.mode, orbit.t0, orbit.x0};
   });
@@ -418,11 +420,13 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   b.parts = result.parts;
   for (auto& part : b.parts) part.start_parameter *= unit / (2 * M_PI);  // in Hz
   b.cpu_seconds = cpu_before;
+  std::size_t last = 0;  // the last part in the branch: its system is at the last point's frequency
   for (std::size_t k = 0; k < n; ++k) {
     b.cpu_seconds += result.parts[k].cpu_seconds;
     for (std::size_t i = 0; i < result.parts[k].kept; ++i) b.points.push_back(part_points[k][i]);
+    if (result.parts[k].kept > 0) last = k;
   }
-  *scene.system = systems[0];
+  *scene.system = systems[last];  // as the single Continuation leaves it
   b.wall_seconds = elapsed();
   return b;
 }
@@ -462,6 +466,15 @@ inline std::string json_escape(const std::string& text) {
     o += (static_cast<unsigned char>(ch) < 0x20) ? ' ' : ch;
   }
   return o;
+}
+
+/// One line on part k of a branch in parts: its start [Hz], status, points kept and whether it
+/// joined the next.
+inline std::string frc_part_line(std::size_t k, const stickslip::ContinuationPart<double>& part) {
+  char t[160];
+  std::snprintf(t, sizeof t, "part %zu from %.3f Hz: %s, %zu of %zu points kept%s", k, part.start_parameter,
+                stickslip::to_string(part.status), part.kept, part.points, part.joined ? ", joined the next" : "");
+  return t;
 }
 
 /// Writes frc.csv (one row per point), frc_linear.csv and frc.json into `out`.
@@ -551,10 +564,7 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
     std::printf("frc N0 %g N: %s, %zu points, %.1f s CPU, %.1f s elapsed%s%s\n", n0, b.status.c_str(), b.points.size(),
                 b.cpu_seconds, b.wall_seconds, b.message.empty() ? "" : ": ", b.message.c_str());
     for (std::size_t k = 0; k < b.parts.size(); ++k)
-      std::printf("frc N0 %g N:   part %zu from %.3f Hz: %s, %zu of %zu points kept%s\n", n0, k,
-                  b.parts[k].start_parameter,
-                  stickslip::to_string(b.parts[k].status), b.parts[k].kept, b.parts[k].points,
-                  b.parts[k].joined ? ", joined the next" : "");
+      std::printf("frc N0 %g N:   %s\n", n0, frc_part_line(k, b.parts[k]).c_str());
     b.linear = std::move(linear);
     b.stuck_hz = std::move(stuck_hz);
     b.free_hz = std::move(free_hz);
