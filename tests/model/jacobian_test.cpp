@@ -80,17 +80,22 @@ struct JacobianCase {
   NormalLoad normal;
   DamperStates mode;
   double tolerance;  // of each row's scale (see the cases)
+  bool convective = true;
+  bool regularised = false;  // tanh law (mu varies with V): the difference branch
 };
 
 TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
   // Exact modes, 1e-9: A_m and the audit forms are exact (round-off ~1e-13); the X columns are
   // the model's central differences at h = 1e-6 inside X's element (1 cm), truncation
   // (h / 1 cm)^2 times the shapes' curvature (measured: at most 5e-11 over the nine states).
-  // The difference branch, 1e-4: the model's steps h = 1e-6 max(1, |x_j|) are 1 % of
-  // q ~ 1e-4, and the moving contact makes f nonlinear in (q, q', X) (slope q^T psi'(X) times
-  // V times N): truncation (h/q)^2 ~ 1e-4 times those terms' share (measured 1e-6 to 1e-5) -
-  // the same steps as VariationalSystem's own differences. A wrong or missing term is of the
-  // size of its row (error ~1).
+  // Slip at a moving contact, 1e-8: the tangent of the solve (exact up to round-off) in every
+  // column but X, whose central differences at h = 1e-6 inside X's element are as in the exact
+  // modes; the reference's own error (~1e-12) and the X columns' truncation (measured below
+  // 1e-9) set it. The difference branch (a slip coefficient that varies with V), 1e-4: the
+  // model's steps h = 1e-6 max(1, |x_j|) are 1 % of q ~ 1e-4, and the moving contact makes f
+  // nonlinear in (q, q', X) (slope q^T psi'(X) times V times N): truncation (h/q)^2 ~ 1e-4
+  // times those terms' share (measured 1e-6 to 1e-5) - the same steps as VariationalSystem's
+  // own differences. A wrong or missing term is of the size of its row (error ~1).
   const std::vector<JacobianCase> cases = {
       {"moving contact, all stuck (A_m, X columns by differences, audit rows)", true, NormalLoad::Inertial,
        both(ContactState::Stick, ContactState::Stick), 1e-9},
@@ -98,8 +103,16 @@ TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
        both(ContactState::SlipPositive, ContactState::Stick), 1e-9},
       {"fixed contact, both slipping, inertial N (exact slip)", false, NormalLoad::Inertial,
        both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-9},
-      {"moving contact, one slipping (not exact: differences)", true, NormalLoad::Inertial,
-       both(ContactState::SlipPositive, ContactState::Stick), 1e-4},
+      {"moving contact, one slipping (tangent of the solve)", true, NormalLoad::Inertial,
+       both(ContactState::SlipPositive, ContactState::Stick), 1e-8},
+      {"moving contact, both slipping, inertial N (tangent)", true, NormalLoad::Inertial,
+       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-8},
+      {"moving contact, both slipping, constant N (tangent)", true, NormalLoad::Constant,
+       both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-8},
+      {"moving contact, one slipping, no convective terms (tangent)", true, NormalLoad::Inertial,
+       both(ContactState::Stick, ContactState::SlipNegative), 1e-8, false},
+      {"moving contact, regularised law (differences)", true, NormalLoad::Inertial,
+       both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-4, true, true},
   };
   std::mt19937 rng(21);  // fixed seed
   for (const JacobianCase& c : cases) {
@@ -108,7 +121,11 @@ TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
     ModelOptions<double> options;  // energy audit on (the default): four quadrature rows
     options.moving_contact = c.moving;
     options.normal_load = c.normal;
-    System sys(t.frame, t.basis, paper_dampers(t, 12.0), paper_load(t), options);
+    options.convective_terms = c.convective;
+    std::vector<PointDamper<double>> dampers = paper_dampers(t, 12.0);
+    if (c.regularised)
+      for (auto& d : dampers) d.law = RegularisedLaw<double>(0.3, 1e-2);
+    System sys(t.frame, t.basis, std::move(dampers), paper_load(t), options);
     ASSERT_GT(sys.audit_size(), 0);
     for (int k = 0; k < 3; ++k) {
       const double time = std::uniform_real_distribution<double>(0.0, 0.05)(rng);

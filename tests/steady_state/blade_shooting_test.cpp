@@ -66,15 +66,14 @@ TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
     // point shifted along the member gives a neighbouring orbit: a multiplier 1 to within the
     // change of the shapes, which makes M - I singular), so they keep the transient's values;
     // the audit integrals are quadratures.
-    // Where the dampers slide, the monodromy by finite differences (2n plain periods): on this
-    // scene ~3x cheaper than the variational run (45 model evaluations per stage;
-    // docs/steady_state.md), which took ~300 s of this test under ASan; the variational path is
-    // checked against it on the single-DOF scenes (saltation tests). Stuck all period, the
-    // variational one: the family's multipliers 1 are exact there, while the differences carry
-    // ~rtol / fd_step = 1e-4 of noise, and the singular directions are lost in it.
+    // The variational monodromy (the model's jacobian: A_m where stuck, the tangent of the solve
+    // where a contact slides; Phi on the plain run's steps, as the example takes it): ~3x cheaper
+    // than the finite-difference one here (2n plain periods) and exact where the differences are
+    // not (below). Stuck all period the family's multipliers 1 are exact, while the differences
+    // carry ~rtol / fd_step = 1e-4 of noise, and the singular directions are lost in it.
     const bool stuck_all_period = preload > 4;
     stickslip::ShootingOptions<double> opt;
-    if (!stuck_all_period) opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+    opt.control_sensitivities = false;
     opt.periodic = stickslip::ShootingOptions<double>::first(sys.contact_offset());
     System::State guess = transient.x;
     guess.tail(sys.state_size() - sys.linear_size()).setZero();  // the audit integrals restart
@@ -107,6 +106,22 @@ TEST(SteadyStateBlade, OrbitEqualsTheLongTransientAtThreePreloads) {
     const double tol = 10 * (settled + opt.tolerance * std::max(1.0, scale)) / (1 - mu_c) + 1e-8 * scale;
     EXPECT_LE((orbit.x0.head(n) - transient.x.head(n)).cwiseAbs().maxCoeff(), tol);
     EXPECT_TRUE(orbit.floquet.stable);
+    if (stuck_all_period) continue;
+    // An independent monodromy of the sliding orbit: finite differences of plain periods at
+    // fd_step 1e-9 (h = 1e-9 absolute, ~1e-5 of q ~ 1e-4). Measured against the variational one
+    // (periodic block, relative to max(1, |M|) ~ 5e3): 0.15 / 1e-2 / 5e-3 / 2e-6 at fd_step
+    // 1e-6 / 1e-7 / 1e-8 / 1e-9 at 0.2 N and 0.7 / 4e-3 / 1e-4 / 5e-5 at 1 N: the differences
+    // converge to it, their noise ~ the runs' error / h ~ 1e-5. Bound 1e-3: 20x that; a wrong
+    // term of the jacobian (or a saltation matrix) moves M at O(1).
+    stickslip::ShootingOptions<double> fd = opt;
+    fd.monodromy = stickslip::MonodromyMethod::FiniteDifference;
+    fd.fd_step = 1e-9;
+    const auto by_fd = stickslip::run_period(sys, orbit.mode, t_a, orbit.x0, T, fd, true);
+    ASSERT_TRUE(by_fd.ok()) << by_fd.message;
+    const Eigen::Index P = static_cast<Eigen::Index>(opt.periodic.size());
+    const auto M = orbit.monodromy.topLeftCorner(P, P), Mfd = by_fd.monodromy.topLeftCorner(P, P);
+    const double msize = std::max(1.0, Mfd.cwiseAbs().maxCoeff());
+    EXPECT_LE((M - Mfd).cwiseAbs().maxCoeff() / msize, 1e-3) << "max |M| " << msize;
   }
 }
 

@@ -532,7 +532,10 @@ class FrictionDampedSystem {
   /// exact (linear_part: every damper stuck, or slipping or flying at a fixed contact under a
   /// CoulombLaw, no time_function load) J_LL = A_m of linear_part, the audit rows are
   /// d(z^T Q_j z)/dx_L = ((Q_j + Q_j^T) z)_L and the contact-coordinate columns X (frozen in A_m)
-  /// are central differences of rhs; elsewhere every column is a central difference,
+  /// are central differences of rhs. Where a contact slides along its member under a CoulombLaw
+  /// (no damper in flight or at a wall), every column but X is the tangent of the solve,
+  /// (A + L^T F) du = rho - L^T dr0, dq'' = dr0 + F du (docs/model.md, "Jacobian df/dx"); the
+  /// X columns are central differences. Elsewhere every column is a central difference,
   /// (f(x + h e_j) - f(x - h e_j)) / 2h with h = 1e-6 max(1, |x_j|). J is NaN where the
   /// evaluation at x is not finite. Allocates nothing once J and the work vectors have their
   /// sizes. Throws std::invalid_argument on a wrong size of x or mode.
@@ -1653,6 +1656,17 @@ class FrictionDampedSystem {
   State jac_x_, jac_fp_, jac_fm_;
   /// Column j of J by central differences of rhs (h = 1e-6 max(1, |x_j|)).
   void jacobian_column(const Mode& mode, Scalar t, const State& x, Index j, Matrix& J);
+  /// J of an inexact mode by the tangent of the solve (every column but the moving contacts'
+  /// X, which the caller takes by differences); false, J untouched, where it does not apply (a
+  /// damper in flight or resting at a wall, or slipping under a law whose coefficient varies
+  /// with V).
+  bool tangent_jacobian(const Mode& mode, Scalar t, const State& x, Matrix& J);
+  // Workspace of tangent_jacobian: per unknown its row of the tangent right side and of du, the
+  // gradients of one damper's scalars, the capacitance matrix and its LU per number of unknowns.
+  Matrix jac_rho_, jac_du_, jac_S_;
+  Eigen::Matrix<Scalar, 1, Eigen::Dynamic> jac_gV_, jac_gs_, jac_gh_, jac_gd_, jac_gc_;
+  Vector jac_sv_, jac_cv_, jac_bv_;
+  std::vector<Eigen::PartialPivLU<Matrix>> jac_lu_;
   /// True when linear_part's A_m is exact in `mode` (r_m = 0 with X frozen), as linear_part decides.
   bool exact_mode(const Mode& mode) const;
 
@@ -2075,6 +2089,11 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
     detail::throw_invalid("FrictionDampedSystem::jacobian", "mode must hold one state per damper, size", mode.size());
   J.resize(N, N);
   if (!exact_mode(mode)) {
+    if (tangent_jacobian(mode, t, x, J)) {
+      for (Index i = 0; i < D_; ++i)
+        if (moving_[static_cast<std::size_t>(i)]) jacobian_column(mode, t, x, contact_offset() + i, J);
+      return;
+    }
     for (Index j = 0; j < N; ++j) jacobian_column(mode, t, x, j, J);
     return;
   }
@@ -2107,6 +2126,163 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
   }
   if (options_.moving_contact)
     for (Index i = 0; i < D_; ++i) jacobian_column(mode, t, x, contact_offset() + i, J);
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mode, Scalar t, const State& x,
+                                                                 Matrix& J) {
+  using std::isnan;
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (mode[i] == ContactState::Separated || mode.wall(i) != WallRest::None) return false;
+    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+    if (!stuck && isnan(kinetic_constant_[iu])) return false;
+  }
+  cache_valid_ = false;  // F_, L_, A_, u_ of this very state
+  const Evaluation& e = evaluate(mode, t, x);
+  const Index N = state_size(), n = n_, U = num_unknowns_, D2 = 2 * D_;
+  if (!e.finite) {
+    J.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return true;
+  }
+  if (jac_rho_.rows() != D2 || jac_rho_.cols() != N) {
+    jac_rho_.setZero(D2, N);
+    jac_du_.setZero(D2, N);
+    for (auto* g : {&jac_gV_, &jac_gs_, &jac_gh_, &jac_gd_, &jac_gc_}) g->setZero(N);
+    for (Vector* v : {&jac_sv_, &jac_cv_, &jac_bv_}) v->setZero(n);
+    jac_lu_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
+  }
+  J.setZero();
+  const Index qd0 = n;  // first q' column
+  // The solve: A u + L^T q'' = c (one row per unknown), q'' = r0 + F u, r0 = -omega^2 q - c q'
+  // + (terms of X and t only). Its tangent in a direction dx, with F constant off the X columns
+  // (a Coulomb slip coefficient is a constant, the shapes depend on X only):
+  //   (A + L^T F) du = rho - L^T dr0,   rho_j = dc_j - dA_j u_j - dL_j^T q'',   dq'' = dr0 + F du.
+  // rho is nonzero only in the rows of a stuck damper's friction (c = k x_d) and of a slipping
+  // damper with a moving contact, whose row (moving_damper, over its diagonal s_j when divided)
+  //   (1 - sc mu) N + m (a - sc b)^T q'' = N0 - m h + sc k x_d + m sc dd
+  // carries the slope sc = q^T psi_w'(X) (with the convective terms), h = 2 (psi_w'^T q') V +
+  // (psi_w''^T q) V^2 and dd = (psi_u'^T q') V, V = x_d' - b^T q'.
+  auto rho = jac_rho_.topRows(U);
+  rho.setZero();
+  const bool convective = options_.convective_terms;
+  for (Index j = 0; j < U; ++j) {
+    const Index col = unknown_of_[static_cast<std::size_t>(j)];
+    const Index i = col < D_ ? col : col - D_;
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const Damper& dmp = dampers_[iu];
+    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+    if (col >= D_) {  // a stuck damper's friction row: f - m b^T q'' = k x_d
+      rho(j, x_offset() + i) = dmp.effective_stiffness();
+      continue;
+    }
+    if (stuck || !moving_[iu] || !convective) continue;  // N0 on the right: constant
+    const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
+    const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
+    const auto B = element_block(iu, loc.element);
+    const auto& w = loc.weights;
+    const Scalar sd = dmp.side, m = dmp.effective_mass(), k = dmp.effective_stiffness();
+    const auto q = x.segment(0, n), qd = x.segment(n, n);
+    jac_sv_.noalias() = sd * (w.dw1 * B.col(1) + w.dt1 * B.col(2) + w.dw2 * B.col(4) + w.dt2 * B.col(5));
+    jac_cv_.noalias() = sd * (w.ddw1 * B.col(1) + w.ddt1 * B.col(2) + w.ddw2 * B.col(4) + w.ddt2 * B.col(5));
+    jac_bv_.noalias() = w.u1 * B.col(0) + w.u2 * B.col(3);
+    const Scalar V = e.V[i], sc = e.slope[i], mu = mu_[i], xi = x[x_offset() + i];
+    const Scalar dw_qd = jac_sv_.dot(qd), ddw_q = jac_cv_.dot(q);
+    const Scalar dqu = (B.col(3) - B.col(0)).dot(qd);  // (u2 - u1) of q' at the element's nodes
+    const Scalar dd = w.du * dqu * V;
+    // gradients (rows over the state) of V, sc, h and dd
+    jac_gV_.setZero();
+    jac_gV_[xd_offset() + i] = Scalar(1);
+    jac_gV_.segment(qd0, n) = -jac_bv_.transpose();
+    jac_gs_.setZero();
+    jac_gs_.head(n) = jac_sv_.transpose();
+    jac_gh_ = (Scalar(2) * dw_qd + Scalar(2) * ddw_q * V) * jac_gV_;
+    jac_gh_.head(n) += (V * V) * jac_cv_.transpose();
+    jac_gh_.segment(qd0, n) += (Scalar(2) * V) * jac_sv_.transpose();
+    jac_gd_ = (w.du * dqu) * jac_gV_;
+    jac_gd_.segment(qd0, n) += (w.du * V) * (B.col(3) - B.col(0)).transpose();
+    // rho_j = (dc - dA N - dL^T q'') / s_j with dc = -m dh + (k x_d + m dd) dsc + sc k dx_d +
+    // m sc ddd, dA = -mu dsc, dL = -m b dsc
+    jac_gc_ = -m * jac_gh_ + (k * xi + m * dd + mu * e.N[i] + m * jac_bv_.dot(e.qdd)) * jac_gs_ +
+              (m * sc) * jac_gd_;
+    jac_gc_[x_offset() + i] += sc * k;
+    using std::abs;
+    const Scalar diag = Scalar(1) - sc * mu;
+    const Scalar s_j = diag != Scalar(1) && abs(diag) >= Scalar(0.5) ? diag : Scalar(1);
+    rho.row(j) = jac_gc_ / s_j;
+  }
+  // dq'' = dr0 + F du (n x N), J's q'' rows; dr0 = -omega^2 dq - c dq'.
+  auto qdd_rows = J.middleRows(n, n);
+  if (U > 0) {
+    const auto F = F_.topLeftCorner(n, U);
+    const auto L = L_.topLeftCorner(n, U);
+    rho.leftCols(n).noalias() += L.transpose() * omega2_.asDiagonal();
+    rho.middleCols(qd0, n).noalias() += L.transpose() * modal_damping_.asDiagonal();
+    Eigen::PartialPivLU<Matrix>& lu = jac_lu_[static_cast<std::size_t>(U)];
+    if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
+    jac_S_.noalias() = L.transpose() * F;
+    jac_S_.diagonal() += A_.head(U);
+    lu.compute(jac_S_);
+    auto du = jac_du_.topRows(U);
+    du.noalias() = lu.solve(rho);
+    qdd_rows.noalias() = F * du;
+  }
+  qdd_rows.leftCols(n).diagonal() -= omega2_;
+  qdd_rows.middleCols(qd0, n).diagonal() -= modal_damping_;
+  J.topRows(n).middleCols(qd0, n).diagonal().setOnes();  // (q)' = q'
+  // Per damper: x_d' rows, x_d'' rows, X' = V rows (moving slip), and the audit's friction and
+  // slope rows; dN_i is du of N_i's unknown (0 for a constant normal load).
+  const bool audit = options_.energy_audit;
+  const Index o = audit ? energy_offset() : -1;
+  if (audit) {
+    for (Index l = 0; l < load_psi_.cols(); ++l)  // W_ext' = sum_l F_l(t) psi_l^T q'
+      J.row(o).segment(qd0, n) += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l).transpose();
+    J.row(o + 1).segment(qd0, n) = Scalar(2) * modal_damping_.cwiseProduct(x.segment(n, n)).transpose();
+  }
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const Damper& dmp = dampers_[iu];
+    const Scalar m = dmp.effective_mass(), k = dmp.effective_stiffness();
+    J(x_offset() + i, xd_offset() + i) = Scalar(1);
+    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+    if (stuck) {  // x_d'' = b^T q'' (V = 0: no X', friction or slope power)
+      J.row(xd_offset() + i).noalias() = C_.col(D_ + i).head(n).transpose() * qdd_rows;
+      continue;
+    }
+    Index unknown = -1;
+    for (Index j = 0; j < U; ++j)
+      if (unknown_of_[static_cast<std::size_t>(j)] == i) unknown = j;
+    // x_d'' = (f - k x_d) / m, f = -mu N
+    const Scalar mu = mu_[i];
+    if (unknown >= 0) J.row(xd_offset() + i) = (-mu / m) * jac_du_.row(unknown);
+    J(xd_offset() + i, x_offset() + i) -= k / m;
+    // V = x_d' - b^T q' (b at X)
+    jac_gV_.setZero();
+    jac_gV_[xd_offset() + i] = Scalar(1);
+    if (moving_[iu]) {
+      jac_gV_.segment(qd0, n) = -modal(slip_b_.col(i)).transpose();
+      J.row(contact_offset() + i) = jac_gV_;
+    } else {
+      jac_gV_.segment(qd0, n) = -C_.col(D_ + i).head(n).transpose();
+    }
+    if (!audit) continue;
+    const Scalar V = e.V[i], Ni = e.N[i], fi = e.f[i];
+    // D_fric' = -sum f V: -(V df + f dV), df = -mu dN
+    if (unknown >= 0) J.row(o + 2) += (V * mu) * jac_du_.row(unknown);
+    J.row(o + 2) -= fi * jac_gV_;
+    if (options_.moving_contact && moving_[iu]) {  // W_slope' = -sum N slope V
+      const Scalar sl = e.slope[i];
+      if (unknown >= 0) J.row(o + 3) -= (sl * V) * jac_du_.row(unknown);
+      J.row(o + 3) -= (Ni * sl) * jac_gV_;
+      const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
+      const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
+      const auto B = element_block(iu, loc.element);
+      const auto& w = loc.weights;
+      J.row(o + 3).head(n) -= (Ni * V * dmp.side) *
+                              (w.dw1 * B.col(1) + w.dt1 * B.col(2) + w.dw2 * B.col(4) + w.dt2 * B.col(5)).transpose();
+    }
+  }
+  return true;
 }
 
 template <class Scalar_, class Law_, int Modes>
