@@ -340,6 +340,9 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // Where the stick fraction changes (an event appears) the corrector can land on another
   // orbit, several steps away (seen at 1 N near 16 Hz): reject such a point and halve the step.
   co.max_corrector_distance = 2;
+  // Move the section t0 away from an event that comes within 2 % of a period of it: an event
+  // crossing t0 stalled the 1 N branch at 30.74 Hz (docs/steady_state.md, "Moving the section").
+  co.section_margin = 0.02;
   auto set_parameter = [&scene, unit](System& sys, double par) {
     BladeParameters q = scene.parameters;
     q.force_omega = par * unit;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace steady_state_den_hartog_test {  // named: the steady-state test files share one unity TU
 namespace {
@@ -171,6 +172,76 @@ TEST(SteadyStateDenHartog, OrbitWithStopsEqualsTheLongTransientAndHasStickPhases
   EXPECT_LT(free_run.stats.accepted_steps, var.stats.accepted_steps);
   expect_matrix_near(free_run.monodromy.topLeftCorner(2, 2), fd.monodromy.topLeftCorner(2, 2), 1e-6,
                      "variational (Phi free) vs finite-difference monodromy");
+}
+
+// A frequency branch of continuous sliding (ratio 0.1, beta 0.6 -> 0.95 towards resonance) from a
+// section t0 placed 0.5 % of T after a reversal of the start orbit: Continuation moves the section to the
+// middle of the longest event-free interval before the first step (ContinuationOptions::
+// section_margin, 2 % of T), and again wherever a reversal comes within 2 % of T of it as the
+// reversals' phase moves against the section's (the lag grows, and a fixed t0 is the phase
+// omega t0, which moves with omega). Every point is checked against the closed form at its own
+// t0 (tolerances as in ContinuousSlidingOrbitIsTheClosedForm); no accepted orbit has a reversal
+// nearer than half the margin to its section except the one that moved it.
+TEST(SteadyStateDenHartog, FrequencyBranchMovesItsSectionAwayFromTheReversals) {
+  const double ratio = 0.1, wn = std::sqrt(kStiffness / kMass);
+  const auto params = [&](double w) {
+    Scene s = make_scene(w / wn, ratio);
+    return s.p;
+  };
+  stickslip::ContinuationOptions<double> co;
+  co.parameter_min = 0.6 * wn;
+  co.parameter_max = 0.95 * wn;  // (ratio 0.1 < pi/4: the amplitude is unbounded at resonance)
+  co.initial_step = 0.02;
+  co.max_step = 0.1;
+  co.max_points = 300;
+  co.section_margin = 0.02;
+  const Scene s0 = make_scene(0.6, ratio);
+  const DenHartogOrbit ref0(kMass, kStiffness, kForce, s0.w, kMuK * s0.N, kMuK * s0.N);
+  ASSERT_TRUE(ref0.valid);
+  // 0.5 % of T after the reversal x' > 0 -> x' < 0 (the displacement peak): shootable (on the
+  // reversal itself Shooting reports a start on a switching surface), but inside the margin
+  const double t0 = ref0.t1 + ref0.T / 2 + 0.005 * ref0.T;
+  double x = 0, v = 0;
+  Oscillator sys(params(co.parameter_min), Contact(Law(kMuK, kMuK)));
+  stickslip::Continuation<Oscillator> cont(
+      sys, [&](Oscillator& o, double w) { o = Oscillator(params(w), o.contact()); },
+      [](double w) { return 2 * contact_test::kDenHartogPi / w; }, oscillator_options(), co);
+  cont.start_mode([](Oscillator& o, double t, const Oscillator::State& xs, const S&) {
+    return o.consistent_mode(t, xs);
+  });
+  ref0.state(t0, x, v);
+  ASSERT_LT(v, 0);
+  const auto branch = cont.run(S::SlipNegative, t0, Eigen::Vector4d(1.05 * x, 0.95 * v, 0, 0), co.parameter_min);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  ASSERT_GE(branch.points.size(), 10u);
+  EXPECT_NE(branch.points.front().orbit.t0, t0);  // moved off the reversal at the start
+  int sections = 1, checked = 0;
+  for (std::size_t k = 0; k < branch.points.size(); ++k) {
+    const auto& pt = branch.points[k];
+    if (k > 0 && pt.orbit.t0 != branch.points[k - 1].orbit.t0) ++sections;
+    const double w = pt.parameter, T = 2 * contact_test::kDenHartogPi / w;
+    const double N = ratio * kForce / kMuK;
+    const DenHartogOrbit ref(kMass, kStiffness, kForce, w, kMuK * N, kMuK * N);
+    if (!ref.valid) continue;
+    ++checked;
+    SCOPED_TRACE(::testing::Message() << "omega " << w << ", t0 " << pt.orbit.t0);
+    double xr = 0, vr = 0;
+    ref.state(pt.orbit.t0, xr, vr);
+    EXPECT_NEAR(pt.orbit.x0[0], xr, 1e-7 * ref.X);
+    EXPECT_NEAR(pt.orbit.x0[1], vr, 1e-7 * ref.X * w);
+    EXPECT_NEAR(pt.orbit.amplitudes[0], ref.X, 1e-7 * ref.X);
+    const bool moved_after = k + 1 < branch.points.size() && branch.points[k + 1].orbit.t0 != pt.orbit.t0;
+    for (const auto& e : pt.orbit.events) {
+      const double f = wrap(e.t - pt.orbit.t0, T);
+      if (!moved_after) {
+        EXPECT_GE(std::min(f, T - f), 0.01 * T);
+      }
+    }
+  }
+  std::printf("frequency branch: %zu points, %d sections, %d checked against the closed form\n",
+              branch.points.size(), sections, checked);
+  EXPECT_GE(checked, static_cast<int>(branch.points.size()) / 2);
+  EXPECT_GE(sections, 3);  // the start's move and at least one along the branch
 }
 
 }  // namespace

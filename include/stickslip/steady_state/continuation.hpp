@@ -38,6 +38,15 @@ struct ContinuationOptions {
   /// switch at a kink of G, where the event sequence changes, or a far-off solution outside the
   /// range). 0: no check (the default).
   Scalar max_corrector_distance = 0;
+  /// > 0: when an event of an accepted orbit lies within section_margin T of the section t0
+  /// (mod T), t0 moves to the middle of the orbit's longest event-free interval before the next
+  /// step (the last two points are carried there by a plain run of the shift, the secant taken
+  /// between them): an event crossing t0 along the branch makes G kink there (the start mode
+  /// flips between iterates) and stalls the corrector. Each point's orbit reports its own t0. 0
+  /// (the default): t0 fixed along the branch. (Off by default: a branch into a family of
+  /// orbits, e.g. SteadyStateFamily's, takes other corrector paths on moved sections; the blade
+  /// example's --frc sets 0.02.)
+  Scalar section_margin = Scalar(0);
 
   /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range.
   void validate(const std::string& where) const {
@@ -62,6 +71,8 @@ struct ContinuationOptions {
     if (direction != 1 && direction != -1)
       detail::throw_invalid(where, "options.direction must be +1 or -1", direction);
     detail::require_non_negative(where, "options.max_corrector_distance", max_corrector_distance);
+    if (!(section_margin >= 0 && section_margin < Scalar(0.5)))
+      detail::throw_invalid(where, "options.section_margin must be in [0, 0.5)", section_margin);
   }
 };
 
@@ -126,9 +137,11 @@ struct ContinuationResult {
 /// max_step), one that needs more than half the allowed iterations halves it, a failure halves it
 /// and retries (down to min_step); with max_corrector_distance > 0 a corrected point farther from
 /// its prediction than that many ds is a failure too. The arclength norm is Euclidean in (x_P, p): scale the
-/// parameter (or the states) so that both are of order one. t0 is kept along the branch; the
-/// start mode too, unless a start_mode() rule re-decides it from each iterate (needed when a
-/// switch of the orbit crosses t0 along the branch). The system is left at the
+/// parameter (or the states) so that both are of order one. t0 is kept along the branch while
+/// no event of the orbit comes within options.section_margin of a period of it, else moved
+/// away from the events (see the option); the start mode is kept too, unless a start_mode()
+/// rule re-decides it from each iterate (needed when a switch of the orbit crosses t0 along the
+/// branch, i.e. with section_margin = 0). The system is left at the
 /// parameter of the last point. Throws std::invalid_argument for caller errors only.
 template <class System>
 class Continuation {
@@ -200,6 +213,19 @@ class Continuation {
   bool correct(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
                const State& x_pred, Scalar p_pred, PeriodicOrbit<System>& orbit, int& iterations,
                std::string& why);
+  // The shift of t0 to the middle of the orbit's longest event-free interval when one of its
+  // events lies within section_margin T of t0 (mod T); 0 when none does, or when no interval
+  // is longer than twice the margin.
+  Scalar section_shift(const PeriodicOrbit<System>& orbit, Scalar T) const;
+  // Runs (mode, t0, x) at parameter p for `delta`; false when the run fails.
+  bool advance(Mode& mode, Scalar t0, State& x, Scalar p, Scalar delta) {
+    set_(sys_, p);
+    const PeriodRun<System> r = run_period(sys_, mode, t0, x, delta, shooting_.options(), false);
+    if (!r.ok()) return false;
+    x = r.x_end;
+    mode = r.mode_end;
+    return true;
+  }
   Vector pack(const State& x, Scalar p) const {
     Vector y(static_cast<Eigen::Index>(P_.size()) + 1);
     for (std::size_t k = 0; k < P_.size(); ++k) y[static_cast<Eigen::Index>(k)] = x[P_[k]];
@@ -291,6 +317,33 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
 }
 
 template <class System>
+auto Continuation<System>::section_shift(const PeriodicOrbit<System>& orbit, Scalar T) const -> Scalar {
+  if (!(opt_.section_margin > 0) || orbit.events.empty() || !(T > 0)) return Scalar(0);
+  using std::fmod;
+  std::vector<Scalar> phase;
+  phase.reserve(orbit.events.size());
+  Scalar nearest = T;
+  for (const auto& e : orbit.events) {
+    Scalar f = fmod(e.t - orbit.t0, T);
+    if (f < 0) f += T;
+    phase.push_back(f);
+    nearest = std::min({nearest, f, T - f});
+  }
+  const Scalar margin = opt_.section_margin * T;
+  if (nearest >= margin) return Scalar(0);
+  std::sort(phase.begin(), phase.end());
+  Scalar best = phase.front() + T - phase.back(), shift = fmod(phase.back() + best / 2, T);
+  for (std::size_t k = 1; k < phase.size(); ++k) {
+    const Scalar gap = phase[k] - phase[k - 1];
+    if (gap > best) {
+      best = gap;
+      shift = phase[k - 1] + gap / 2;
+    }
+  }
+  return best > 2 * margin ? shift : Scalar(0);
+}
+
+template <class System>
 auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_guess, Scalar p0)
     -> Result {
   static const std::string where = "Continuation::run";
@@ -310,6 +363,20 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
     result.status = ContinuationStatus::StartFailed;
     result.message = "no periodic orbit at p0 = " + detail::format_value(p0) + ": " + orbit.message;
     return result;
+  }
+  // A start orbit with an event next to t0: the same orbit from a section away from its events.
+  if (const Scalar shift = section_shift(orbit, T0); shift > 0) {
+    Mode m = orbit.mode;
+    State xs = orbit.x0;
+    if (advance(m, t0, xs, p0, shift)) {
+      PeriodicOrbit<System> moved = shooting_.forced(m, t0 + shift, xs, T0);
+      if (moved.ok()) {
+        t0 += shift;
+        mode = moved.mode;
+        orbit = std::move(moved);
+      }
+    }
+    set_(sys_, p0);
   }
   State x = orbit.x0;
   Scalar p = p0;
@@ -370,6 +437,7 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       return result;
     }
     const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
+    const Scalar shift = section_shift(next, period_(p_new));
     ContinuationPoint<System> point{p_new, std::move(next), ds, changed};
     if (stop_ && stop_(result.points.back(), point)) {
       set_(sys_, p);
@@ -377,7 +445,19 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       result.message = "the stop rule ended the branch after p = " + detail::format_value(p);
       return result;
     }
-    const Vector secant = pack(x_new, p_new) - pack(x, p);
+    Vector y_last = pack(x, p);
+    if (shift > 0) {  // both points to the section t0 + shift (kept at t0 if a run fails)
+      Mode ma = mode, mb = mode_new;
+      State xa = x, xb = x_new;
+      if (advance(ma, t0, xa, p, shift) && advance(mb, t0, xb, p_new, shift)) {
+        t0 += shift;
+        x_new = xb;
+        mode_new = mb;
+        y_last = pack(xa, p);
+      }
+      set_(sys_, p_new);
+    }
+    const Vector secant = pack(x_new, p_new) - y_last;
     tau = secant / secant.norm();
     x = x_new;
     p = p_new;

@@ -65,7 +65,9 @@ struct SplitContinuationResult {
 /// later parts are dropped: the joined branch follows the curve that a single Continuation from
 /// the first cut traces (its points differ where the parts' steps do), whatever the later starts
 /// found. The speed-up is up to n on n cores when every part joins. options.max_points bounds
-/// each part.
+/// each part. Points compare on one section t0 only: a step of part k whose orbits' t0 differs
+/// from part k + 1's start (ContinuationOptions::section_margin moved a section away from an
+/// event) does not join, so where the sections part, part k runs on alone.
 ///
 /// The systems must be independent objects (copies at the same settings): `set_parameter`,
 /// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
@@ -140,6 +142,7 @@ class SplitContinuation {
   struct Head {
     bool valid = false;
     Vector y0, y1;
+    Scalar t0 = 0;  // the section of both (a part whose second point moved it has no head)
   };
   // (x_P, p) of a point, x_P the periodic components of ShootingOptions.
   Vector pack(const ContinuationPoint<System>& pt) const {
@@ -169,7 +172,9 @@ bool SplitContinuation<System>::joins(const ContinuationPoint<System>& a, const 
   const Scalar dir = Scalar(opt_.direction);
   if (!(dir * (a.parameter - p_next) < 0 && dir * (b.parameter - p_next) >= 0)) return false;
   const Head& head = next.get();  // waits for the next part's first two points
-  if (!head.valid) return false;
+  // (x_P, p) compare only on one section: a step whose orbits sit elsewhere (Continuation moved
+  // t0 away from an event, ContinuationOptions::section_margin) does not join
+  if (!head.valid || !(a.orbit.t0 == head.t0 && b.orbit.t0 == head.t0)) return false;
   const Vector ya = pack(a), d = pack(b) - ya;
   const Scalar len2 = d.squaredNorm();
   if (!(len2 > 0) || !(d.dot(head.y1 - head.y0) > 0)) return false;
@@ -210,10 +215,13 @@ auto SplitContinuation<System>::run(const StartGuess& start) -> Result {
       if (start_mode_) cont.start_mode(start_mode_);
       std::size_t count = 0;
       cont.on_point([&](const ContinuationPoint<System>& pt) {
-        if (count == 0) head.y0 = pack(pt);
+        if (count == 0) {
+          head.y0 = pack(pt);
+          head.t0 = pt.orbit.t0;
+        }
         if (count == 1) {
           head.y1 = pack(pt);
-          head.valid = true;
+          head.valid = pt.orbit.t0 == head.t0;
           publish();
         }
         ++count;
