@@ -343,6 +343,9 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // Move the section t0 away from an event that comes within 2 % of a period of it: an event
   // crossing t0 stalled the 1 N branch at 30.74 Hz (docs/steady_state.md, "Moving the section").
   co.section_margin = 0.02;
+  // Chord iterations first: plain periods (~14x cheaper than a variational one here) with the
+  // last point's Jacobian; one variational period then confirms the point.
+  co.chord_iterations = 4;
   auto set_parameter = [&scene, unit](System& sys, double par) {
     BladeParameters q = scene.parameters;
     q.force_omega = par * unit;

@@ -886,8 +886,8 @@ void bind_steady_state(py::module_& m) {
          std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
-         int max_corrector_iterations, int fast_iterations, double growth, const py::object& start_mode,
-         const py::object& on_point) {
+         int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
+         int chord_iterations, const py::object& start_mode, const py::object& on_point) {
         static const std::string where = "continue_orbits";
         if (!PyCallable_Check(parameter.ptr()))
           throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
@@ -913,6 +913,8 @@ void bind_steady_state(py::module_& m) {
         co.max_corrector_iterations = max_corrector_iterations;
         co.fast_iterations = fast_iterations;
         co.growth = growth;
+        co.section_margin = section_margin;
+        co.chord_iterations = chord_iterations;
         const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point};
         State x = x0 ? *x0 : system.initial_state();
         Mode md = mode ? to_mode(*mode) : system.requested_mode();
@@ -935,13 +937,15 @@ void bind_steady_state(py::module_& m) {
       py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
       py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12, py::arg("initial_step") = 0.01, py::arg("min_step") = 1e-6,
       py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
-      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("start_mode") = py::none(),
-      py::arg("on_point") = py::none(),
+      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
+      py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
       "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
       "orbit is shot from (mode, t0, x0) (default: the system's initial state). The arclength norm is Euclidean in "
-      "(x_P, p): scale p so that both are of order one. A Python exception raised by a callable ends the run and "
+      "(x_P, p): scale p so that both are of order one. section_margin > 0 moves the section t0 away from an "
+      "event within that fraction of a period; chord_iterations > 0 lets the corrector first iterate on plain runs "
+      "with the last point's Jacobian (ContinuationOptions). A Python exception raised by a callable ends the run and "
       "propagates. The GIL is released during the run and re-acquired for each callable.");
 }
 

@@ -36,7 +36,8 @@ def receptance(psi, basis, F, W):
     return np.concatenate([np.imag(a), np.imag(1j * W * a)]), np.concatenate([np.abs(a), W * np.abs(a)])
 
 
-def test_frequency_branch_is_the_closed_form_receptance():
+@pytest.mark.parametrize("chord_iterations", [0, 4])
+def test_frequency_branch_is_the_closed_form_receptance(chord_iterations):
     # Through the first resonance (w_1 = 260.8 rad/s, p = 2.608). Tolerances: each orbit solves
     # |x(T) - x(0)| <= 1e-9 (absolute: |x| < 1) with runs at rtol 1e-9; the error of x0 is that
     # residual over 1 - |mu| (mu = exp(-zeta w_1 T) ~ 0.88: x8) plus the run's global error
@@ -44,12 +45,14 @@ def test_frequency_branch_is_the_closed_form_receptance():
     # are max |x_i| over the steps and 256 samples per period: a sampled sine is short of its peak
     # by <= 1 - cos(pi / 256) = 7.5e-5 of it: 1e-4 relative. The multipliers (variational
     # monodromy at rtol 1e-9) are exp(lambda_j T), lambda_j = -zeta w_j +- i w_j sqrt(1 - zeta^2):
-    # 1e-6.
+    # 1e-6. The same with chord iterations (plain runs with the last point's Jacobian first):
+    # the points are confirmed by the same Newton test, so the same bounds hold.
     at, basis, psi = scene()
     seen = []
     branch = ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
                                 lambda p: 2 * math.pi / (p * UNIT), rtol=1e-9, atol=1e-14,
-                                initial_step=0.05, max_step=0.1, on_point=seen.append)
+                                initial_step=0.05, max_step=0.1, on_point=seen.append,
+                                chord_iterations=chord_iterations)
     assert branch.status == ss.ContinuationStatus.Completed and branch.completed, branch.message
     p = branch.parameters
     assert p[0] == 2.3 and np.all(np.diff(p) > 0) and p[-1] > 2.75  # no fold: p grows to near p_end
@@ -139,6 +142,10 @@ def test_bad_callables_and_options_are_reported():
         ss.continue_orbits(system, lambda s, p: s, 1.0, 1.0, T)
     with pytest.raises(ValueError, match="options.initial_step"):
         ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, initial_step=1.0, max_step=0.1)
+    with pytest.raises(ValueError, match="options.chord_iterations"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, chord_iterations=-1)
+    with pytest.raises(ValueError, match="options.section_margin"):
+        ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, section_margin=0.5)
     with pytest.raises(ValueError, match="monodromy"):
         ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, monodromy="guess")
 

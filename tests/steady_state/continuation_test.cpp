@@ -237,6 +237,22 @@ TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThr
   expect_duffing_branch(branch.points);
 }
 
+// The same branch with chord iterations (plain runs solved with the last point's [M - I, dG/dp]
+// before Newton's variational runs): every point is still confirmed by Newton's test, so the
+// same closed-form checks hold - through both folds, where the Jacobian changes fastest and the
+// chord must hand over to Newton.
+TEST(SteadyStateContinuation, DuffingBranchWithChordIterationsPassesBothFoldsAsWithNewton) {
+  using Sys = ForcedOscillator<1>;
+  Sys sys = duffing_scene();
+  stickslip::ContinuationOptions<double> co = frequency_options(0.9, 1.15, 0.05);
+  co.chord_iterations = 4;
+  stickslip::Continuation<Sys> cont(
+      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
+  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  expect_duffing_branch(branch.points);
+}
+
 // ---- SplitContinuation: one branch in parts on threads ------------------------------------------
 
 template <class Sys>

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,16 @@ struct ContinuationOptions {
   /// orbits, e.g. SteadyStateFamily's, takes other corrector paths on moved sections; the blade
   /// example's --frc sets 0.02.)
   Scalar section_margin = Scalar(0);
+  /// > 0: the corrector first makes up to this many chord iterations: plain orbit runs (no
+  /// monodromy, no dG/dp) solved with the last accepted point's [M - I, dG/dp] and the current
+  /// tangent, while the residual at least halves per run; Newton's own iterations (a
+  /// variational run and dG/dp each) then confirm the point (one run when the chord converged:
+  /// the converged orbit's monodromy) or take over. A variational run costs several plain ones
+  /// (the blade: ~14), so a point costs about one variational run instead of one per iteration.
+  /// The step control reads Newton's iterations only: a point the chord converged counts as
+  /// fast. Not after the section moved (the last M belongs to the old section). 0 (the
+  /// default): Newton only.
+  int chord_iterations = 0;
 
   /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range.
   void validate(const std::string& where) const {
@@ -71,6 +82,8 @@ struct ContinuationOptions {
     if (direction != 1 && direction != -1)
       detail::throw_invalid(where, "options.direction must be +1 or -1", direction);
     detail::require_non_negative(where, "options.max_corrector_distance", max_corrector_distance);
+    if (chord_iterations < 0)
+      detail::throw_invalid(where, "options.chord_iterations must be >= 0", chord_iterations);
     if (!(section_margin >= 0 && section_margin < Scalar(0.5)))
       detail::throw_invalid(where, "options.section_margin must be in [0, 0.5)", section_margin);
   }
@@ -209,10 +222,16 @@ class Continuation {
   // dG/dp at (x, p) by central differences; false (and why) when a run fails.
   bool parameter_derivative(const Mode& mode, Scalar t0, const State& x, Scalar p, Vector& gp,
                             std::string& why);
+  // Chord iterations from (x, p) = the prediction (ContinuationOptions::chord_iterations): leaves
+  // (x, p, mode) at the converged or the best iterate, for the Newton loop to confirm.
+  void chord(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau, const Vector& y_pred,
+             int& iterations);
   // Corrector from y_pred along tau; true with the orbit (and its start mode), else why.
+  // iterations: all orbit runs; newton: Newton's own (1 when the chord converged), which the step
+  // control reads.
   bool correct(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
                const State& x_pred, Scalar p_pred, PeriodicOrbit<System>& orbit, int& iterations,
-               std::string& why);
+               int& newton, std::string& why);
   // The shift of t0 to the middle of the orbit's longest event-free interval when one of its
   // events lies within section_margin T of t0 (mod T); 0 when none does, or when no interval
   // is longer than twice the margin.
@@ -246,6 +265,11 @@ class Continuation {
   StartMode start_mode_;
   StopRule stop_;
   std::vector<Eigen::Index> P_;
+  // The chord's matrix parts: the last accepted point's periodic monodromy block and the latest
+  // dG/dp (valid while the section is that point's).
+  bool chord_valid_ = false;
+  Matrix chord_M_;
+  Vector chord_gp_;
 };
 
 template <class System>
@@ -270,15 +294,18 @@ bool Continuation<System>::parameter_derivative(const Mode& mode, Scalar t0, con
 template <class System>
 bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
                                    const Vector& tau, const State& x_pred, Scalar p_pred,
-                                   PeriodicOrbit<System>& orbit, int& iterations,
+                                   PeriodicOrbit<System>& orbit, int& iterations, int& newton,
                                    std::string& why) {
   const auto np = static_cast<Eigen::Index>(P_.size());
   const Vector y_pred = pack(x_pred, p_pred);
   x = x_pred;
   p = p_pred;
+  iterations = 0;
+  if (opt_.chord_iterations > 0 && chord_valid_) chord(mode, t0, x, p, tau, y_pred, iterations);
   Vector r, gp, rhs(np + 1), dy(np + 1);
   Matrix J(np + 1, np + 1);
-  for (iterations = 1; iterations <= opt_.max_corrector_iterations; ++iterations) {
+  for (newton = 1; newton <= opt_.max_corrector_iterations; ++newton) {
+    ++iterations;
     if (!detail::is_finite(p) || !(period_(p) > 0)) {
       why = "the period T(p) is not > 0 at p = " + detail::format_value(p);
       return false;
@@ -297,6 +324,7 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
       return orbit.ok();
     }
     if (!parameter_derivative(mode, t0, x, p, gp, why)) return false;
+    chord_gp_ = gp;
     J.topLeftCorner(np, np) = shooting_.periodic_block(run.monodromy) - Matrix::Identity(np, np);
     J.topRightCorner(np, 1) = gp;
     J.bottomRows(1) = tau.transpose();
@@ -314,6 +342,45 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
           "; the response may be quasi-periodic or chaotic here)";
   }
   return false;
+}
+
+template <class System>
+void Continuation<System>::chord(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
+                                 const Vector& y_pred, int& iterations) {
+  const auto np = static_cast<Eigen::Index>(P_.size());
+  Matrix J(np + 1, np + 1);
+  J.topLeftCorner(np, np) = chord_M_ - Matrix::Identity(np, np);
+  J.topRightCorner(np, 1) = chord_gp_;
+  J.bottomRows(1) = tau.transpose();
+  Vector r, rhs(np + 1), dy(np + 1);
+  State best_x = x;
+  Scalar best_p = p, best = std::numeric_limits<Scalar>::infinity();
+  Mode best_mode = mode;
+  auto keep_best = [&] {
+    x = best_x;
+    p = best_p;
+    mode = best_mode;
+  };
+  for (int c = 0; c < opt_.chord_iterations; ++c) {
+    if (!detail::is_finite(p) || !(period_(p) > 0)) return keep_best();
+    set_(sys_, p);
+    mode = mode_at(mode, t0, x);
+    const PeriodRun<System> run = shoot(mode, t0, x, p, false);
+    ++iterations;
+    if (!run.ok()) return keep_best();
+    const Scalar res = shooting_.residual(run.x_end, x, r);
+    if (res <= shooting_.tolerance_at(x)) return;  // the Newton loop's first run confirms it
+    if (!(res < Scalar(0.5) * best)) return keep_best();  // not contracting: Newton from the best
+    best = res;
+    best_x = x;
+    best_p = p;
+    best_mode = mode;
+    rhs.head(np) = -r;
+    rhs[np] = -tau.dot(pack(x, p) - y_pred);
+    // (Newton's solve: minimum-norm where M - I is singular, e.g. on a family of stuck orbits)
+    if (!shooting_.newton_step(J, rhs, dy) || !detail::all_finite(dy)) return keep_best();
+    unpack(pack(x, p) + dy, x, p);
+  }
 }
 
 template <class System>
@@ -401,6 +468,9 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
   tau.head(np) = v;
   tau[np] = 1;
   tau *= Scalar(opt_.direction) / tau.norm();
+  chord_M_ = orbit.monodromy;
+  chord_gp_ = gp;
+  chord_valid_ = true;
 
   Scalar ds = opt_.initial_step;
   while (static_cast<int>(result.points.size()) < opt_.max_points) {
@@ -411,7 +481,8 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
     int iterations = 0;
     PeriodicOrbit<System> next;
     Mode mode_new = mode;
-    bool ok = correct(mode_new, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, why);
+    int newton = 0;
+    bool ok = correct(mode_new, t0, x_new, p_new, tau, x_pred, p_pred, next, iterations, newton, why);
     if (ok && opt_.max_corrector_distance > 0) {
       const Scalar jump = (pack(x_new, p_new) - y_pred).norm();
       if (jump > opt_.max_corrector_distance * ds) {
@@ -446,6 +517,8 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       return result;
     }
     Vector y_last = pack(x, p);
+    chord_M_ = point.orbit.monodromy;
+    chord_valid_ = true;
     if (shift > 0) {  // both points to the section t0 + shift (kept at t0 if a run fails)
       Mode ma = mode, mb = mode_new;
       State xa = x, xb = x_new;
@@ -454,6 +527,7 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
         x_new = xb;
         mode_new = mb;
         y_last = pack(xa, p);
+        chord_valid_ = false;  // the last monodromy and dG/dp belong to the old section
       }
       set_(sys_, p_new);
     }
@@ -464,9 +538,10 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
     mode = mode_new;
     result.points.push_back(std::move(point));
     if (on_point_) on_point_(result.points.back());
-    if (iterations <= opt_.fast_iterations)
+    // (Newton's iterations: a point the chord converged counts as fast)
+    if (newton <= opt_.fast_iterations)
       ds = std::min(ds * opt_.growth, opt_.max_step);
-    else if (2 * iterations > opt_.max_corrector_iterations)
+    else if (2 * newton > opt_.max_corrector_iterations)
       ds = std::max(ds / Scalar(2), opt_.min_step);
   }
   result.status = ContinuationStatus::MaxPoints;
