@@ -82,6 +82,7 @@ struct JacobianCase {
   double tolerance;  // of each row's scale (see the cases)
   bool convective = true;
   bool regularised = false;  // tanh law (mu varies with V): the difference branch
+  bool mixed = false;        // damper 1 at a fixed contact point (ContactPoint::Fixed)
 };
 
 TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
@@ -113,6 +114,8 @@ TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
        both(ContactState::Stick, ContactState::SlipNegative), 1e-8, false},
       {"moving contact, regularised law (differences)", true, NormalLoad::Inertial,
        both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-4, true, true},
+      {"one moving and one fixed contact, both slipping (tangent)", true, NormalLoad::Inertial,
+       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-8, true, false, true},
   };
   std::mt19937 rng(21);  // fixed seed
   for (const JacobianCase& c : cases) {
@@ -125,6 +128,7 @@ TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
     std::vector<PointDamper<double>> dampers = paper_dampers(t, 12.0);
     if (c.regularised)
       for (auto& d : dampers) d.law = RegularisedLaw<double>(0.3, 1e-2);
+    if (c.mixed) dampers[1].contact_point = ContactPoint::Fixed;
     System sys(t.frame, t.basis, std::move(dampers), paper_load(t), options);
     ASSERT_GT(sys.audit_size(), 0);
     for (int k = 0; k < 3; ++k) {
