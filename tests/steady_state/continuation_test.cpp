@@ -41,10 +41,11 @@ stickslip::ContinuationOptions<double> frequency_options(double w_lo, double w_h
 
 template <class Sys>
 stickslip::Continuation<Sys> frequency_continuation(Sys& sys, double w_lo, double w_hi,
-                                                    double max_step) {
+                                                    double max_step, int chord_iterations = 0) {
+  stickslip::ContinuationOptions<double> co = frequency_options(w_lo, w_hi, max_step);
+  co.chord_iterations = chord_iterations;
   return stickslip::Continuation<Sys>(
-      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {},
-      frequency_options(w_lo, w_hi, max_step));
+      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
 }
 
 // M = I, K = [2 -1; -1 2] (natural frequencies 1 and sqrt 3), C = 0.02 K + 0.01 I, force on
@@ -244,10 +245,7 @@ TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThr
 TEST(SteadyStateContinuation, DuffingBranchWithChordIterationsPassesBothFoldsAsWithNewton) {
   using Sys = ForcedOscillator<1>;
   Sys sys = duffing_scene();
-  stickslip::ContinuationOptions<double> co = frequency_options(0.9, 1.15, 0.05);
-  co.chord_iterations = 4;
-  stickslip::Continuation<Sys> cont(
-      sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
+  auto cont = frequency_continuation(sys, 0.9, 1.15, 0.05, 4);
   const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
   ASSERT_TRUE(branch.completed()) << branch.message;
   expect_duffing_branch(branch.points);

@@ -1662,11 +1662,18 @@ class FrictionDampedSystem {
   /// with V).
   bool tangent_jacobian(const Mode& mode, Scalar t, const State& x, Matrix& J);
   // Workspace of tangent_jacobian: per unknown its row of the tangent right side and of du, the
-  // gradients of one damper's scalars, the capacitance matrix and its LU per number of unknowns.
+  // gradients of one damper's scalars, its shapes at X, the capacitance matrix and its LU per
+  // number of unknowns.
   Matrix jac_rho_, jac_du_, jac_S_;
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> jac_gV_, jac_gs_, jac_gh_, jac_gd_, jac_gc_;
-  Vector jac_sv_, jac_cv_, jac_bv_;
+  typename Shapes::Values jac_shape_;
   std::vector<Eigen::PartialPivLU<Matrix>> jac_lu_;
+  /// Damper i's shapes at its contact X into jac_shape_ (MemberShapes::evaluate).
+  const typename Shapes::Values& jacobian_shapes(Index i, Scalar X) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    shapes_[static_cast<std::size_t>(damper_shape_[iu])].evaluate(X, jac_shape_, cursors_[iu]);
+    return jac_shape_;
+  }
   /// True when linear_part's A_m is exact in `mode` (r_m = 0 with X frozen), as linear_part decides.
   bool exact_mode(const Mode& mode) const;
 
@@ -2138,7 +2145,8 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
     if (!stuck && isnan(kinetic_constant_[iu])) return false;
   }
-  cache_valid_ = false;  // F_, L_, A_, u_ of this very state
+  // (every path that forms F_, L_, A_, u_ for another state - the frozen probes, the impulse
+  // response, resolve - invalidates the cache, so after evaluate() they are x's)
   const Evaluation& e = evaluate(mode, t, x);
   const Index N = state_size(), n = n_, U = num_unknowns_, D2 = 2 * D_;
   if (!e.finite) {
@@ -2149,7 +2157,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     jac_rho_.setZero(D2, N);
     jac_du_.setZero(D2, N);
     for (auto* g : {&jac_gV_, &jac_gs_, &jac_gh_, &jac_gd_, &jac_gc_}) g->setZero(N);
-    for (Vector* v : {&jac_sv_, &jac_cv_, &jac_bv_}) v->setZero(n);
+    jac_shape_.resize(n);
     jac_lu_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
   }
   J.setZero();
@@ -2177,33 +2185,26 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
       continue;
     }
     if (stuck || !moving_[iu] || !convective) continue;  // N0 on the right: constant
-    const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
-    const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
-    const auto B = element_block(iu, loc.element);
-    const auto& w = loc.weights;
+    const auto& v = jacobian_shapes(i, e.X[i]);  // b = psi_u, psi_u', psi_w', psi_w'' at X
     const Scalar sd = dmp.side, m = dmp.effective_mass(), k = dmp.effective_stiffness();
     const auto q = x.segment(0, n), qd = x.segment(n, n);
-    jac_sv_.noalias() = sd * (w.dw1 * B.col(1) + w.dt1 * B.col(2) + w.dw2 * B.col(4) + w.dt2 * B.col(5));
-    jac_cv_.noalias() = sd * (w.ddw1 * B.col(1) + w.ddt1 * B.col(2) + w.ddw2 * B.col(4) + w.ddt2 * B.col(5));
-    jac_bv_.noalias() = w.u1 * B.col(0) + w.u2 * B.col(3);
     const Scalar V = e.V[i], sc = e.slope[i], mu = mu_[i], xi = x[x_offset() + i];
-    const Scalar dw_qd = jac_sv_.dot(qd), ddw_q = jac_cv_.dot(q);
-    const Scalar dqu = (B.col(3) - B.col(0)).dot(qd);  // (u2 - u1) of q' at the element's nodes
-    const Scalar dd = w.du * dqu * V;
+    const Scalar dw_qd = sd * v.dpsi_w.dot(qd), ddw_q = sd * v.ddpsi_w.dot(q), du_qd = v.dpsi_u.dot(qd);
+    const Scalar dd = du_qd * V;
     // gradients (rows over the state) of V, sc, h and dd
     jac_gV_.setZero();
     jac_gV_[xd_offset() + i] = Scalar(1);
-    jac_gV_.segment(qd0, n) = -jac_bv_.transpose();
+    jac_gV_.segment(qd0, n) = -v.psi_u.transpose();
     jac_gs_.setZero();
-    jac_gs_.head(n) = jac_sv_.transpose();
+    jac_gs_.head(n) = sd * v.dpsi_w.transpose();
     jac_gh_ = (Scalar(2) * dw_qd + Scalar(2) * ddw_q * V) * jac_gV_;
-    jac_gh_.head(n) += (V * V) * jac_cv_.transpose();
-    jac_gh_.segment(qd0, n) += (Scalar(2) * V) * jac_sv_.transpose();
-    jac_gd_ = (w.du * dqu) * jac_gV_;
-    jac_gd_.segment(qd0, n) += (w.du * V) * (B.col(3) - B.col(0)).transpose();
+    jac_gh_.head(n) += (V * V * sd) * v.ddpsi_w.transpose();
+    jac_gh_.segment(qd0, n) += (Scalar(2) * V * sd) * v.dpsi_w.transpose();
+    jac_gd_ = du_qd * jac_gV_;
+    jac_gd_.segment(qd0, n) += V * v.dpsi_u.transpose();
     // rho_j = (dc - dA N - dL^T q'') / s_j with dc = -m dh + (k x_d + m dd) dsc + sc k dx_d +
     // m sc ddd, dA = -mu dsc, dL = -m b dsc
-    jac_gc_ = -m * jac_gh_ + (k * xi + m * dd + mu * e.N[i] + m * jac_bv_.dot(e.qdd)) * jac_gs_ +
+    jac_gc_ = -m * jac_gh_ + (k * xi + m * dd + mu * e.N[i] + m * v.psi_u.dot(e.qdd)) * jac_gs_ +
               (m * sc) * jac_gd_;
     jac_gc_[x_offset() + i] += sc * k;
     using std::abs;
@@ -2274,12 +2275,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
       const Scalar sl = e.slope[i];
       if (unknown >= 0) J.row(o + 3) -= (sl * V) * jac_du_.row(unknown);
       J.row(o + 3) -= (Ni * sl) * jac_gV_;
-      const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
-      const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
-      const auto B = element_block(iu, loc.element);
-      const auto& w = loc.weights;
-      J.row(o + 3).head(n) -= (Ni * V * dmp.side) *
-                              (w.dw1 * B.col(1) + w.dt1 * B.col(2) + w.dw2 * B.col(4) + w.dt2 * B.col(5)).transpose();
+      J.row(o + 3).head(n) -= (Ni * V * dmp.side) * jacobian_shapes(i, e.X[i]).dpsi_w.transpose();
     }
   }
   return true;

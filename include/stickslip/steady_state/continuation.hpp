@@ -245,6 +245,14 @@ class Continuation {
     mode = r.mode_end;
     return true;
   }
+  // The corrector's matrix [M_PP - I, dG/dp; tau^T] (M_PP: the periodic block of a monodromy).
+  static void corrector_matrix(const Matrix& M_PP, const Vector& gp, const Vector& tau, Matrix& J) {
+    const Eigen::Index np = M_PP.rows();
+    J.resize(np + 1, np + 1);
+    J.topLeftCorner(np, np) = M_PP - Matrix::Identity(np, np);
+    J.topRightCorner(np, 1) = gp;
+    J.bottomRows(1) = tau.transpose();
+  }
   Vector pack(const State& x, Scalar p) const {
     Vector y(static_cast<Eigen::Index>(P_.size()) + 1);
     for (std::size_t k = 0; k < P_.size(); ++k) y[static_cast<Eigen::Index>(k)] = x[P_[k]];
@@ -303,7 +311,7 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
   iterations = 0;
   if (opt_.chord_iterations > 0 && chord_valid_) chord(mode, t0, x, p, tau, y_pred, iterations);
   Vector r, gp, rhs(np + 1), dy(np + 1);
-  Matrix J(np + 1, np + 1);
+  Matrix J;
   for (newton = 1; newton <= opt_.max_corrector_iterations; ++newton) {
     ++iterations;
     if (!detail::is_finite(p) || !(period_(p) > 0)) {
@@ -325,9 +333,7 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
     }
     if (!parameter_derivative(mode, t0, x, p, gp, why)) return false;
     chord_gp_ = gp;
-    J.topLeftCorner(np, np) = shooting_.periodic_block(run.monodromy) - Matrix::Identity(np, np);
-    J.topRightCorner(np, 1) = gp;
-    J.bottomRows(1) = tau.transpose();
+    corrector_matrix(shooting_.periodic_block(run.monodromy), gp, tau, J);
     rhs.head(np) = -r;
     rhs[np] = -tau.dot(pack(x, p) - y_pred);
     if (!shooting_.newton_step(J, rhs, dy)) {
@@ -348,10 +354,8 @@ template <class System>
 void Continuation<System>::chord(Mode& mode, Scalar t0, State& x, Scalar& p, const Vector& tau,
                                  const Vector& y_pred, int& iterations) {
   const auto np = static_cast<Eigen::Index>(P_.size());
-  Matrix J(np + 1, np + 1);
-  J.topLeftCorner(np, np) = chord_M_ - Matrix::Identity(np, np);
-  J.topRightCorner(np, 1) = chord_gp_;
-  J.bottomRows(1) = tau.transpose();
+  Matrix J;
+  corrector_matrix(chord_M_, chord_gp_, tau, J);
   Vector r, rhs(np + 1), dy(np + 1);
   State best_x = x;
   Scalar best_p = p, best = std::numeric_limits<Scalar>::infinity();
