@@ -2,11 +2,12 @@
 // frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
 // state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
 // this thread:
-//   orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--quick] [--out file.json]
+//   orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick] [--out file.json]
 // Per preload (5 % modal damping, 200 rad/s, energy audit off, the example's shooting options):
 // one plain period and one variational period (steps, RHS evaluations); shooting from rest and
 // from transients of 10 and 60 periods, with the finite-difference and the variational
-// monodromy; the transient from rest until x(kT) equals the shot orbit's x0 to the shooting
+// monodromy (the one after 60 periods with the variational monodromy, the "one orbit",
+// also as the median of k repeats, default 5); the transient from rest until x(kT) equals the shot orbit's x0 to the shooting
 // tolerance (periods and CPU); the variational period with Phi out of the error control and the
 // finite-difference monodromy, both monodromies against the latter; --quick skips the shootings
 // after 10 periods and from rest; and, with --frc-points n > 0, a frequency branch of n points
@@ -98,6 +99,7 @@ int main(int argc, char** argv) {
   int frc_points = 0;
   int frc_parts = 1;
   bool quick = false;  // skip the shootings after 10 periods and from rest (the slow ones)
+  int repeats = 5;     // of the shooting after 60 periods (variational): its median
   std::string out = "orbit_benchmark.json";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -109,12 +111,14 @@ int main(int argc, char** argv) {
       frc_points = std::stoi(argv[++i]);
     } else if (a == "--frc-parts" && i + 1 < argc) {
       frc_parts = std::max(1, std::stoi(argv[++i]));
+    } else if (a == "--repeats" && i + 1 < argc) {
+      repeats = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--quick") {
       quick = true;
     } else if (a == "--out" && i + 1 < argc) {
       out = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--quick] [--out file.json]\n");
+      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick] [--out file.json]\n");
       return 2;
     }
   }
@@ -133,6 +137,18 @@ int main(int argc, char** argv) {
     stickslip::PeriodicOrbit<System> orbit;
     Timed v60t, v10t, v0t, f60t, f10t;
     const Timed v60 = shoot_after(scene, 60, false, v60t, &orbit);
+    std::vector<double> v60_cpu{v60.cpu};
+    for (int r = 1; r < repeats; ++r) {
+      Timed with_transient;
+      v60_cpu.push_back(shoot_after(scene, 60, false, with_transient).cpu);
+    }
+    std::sort(v60_cpu.begin(), v60_cpu.end());
+    const std::size_t mid = v60_cpu.size() / 2;
+    const double v60_median = v60_cpu.size() % 2 ? v60_cpu[mid] : (v60_cpu[mid - 1] + v60_cpu[mid]) / 2;
+    std::printf("  one orbit (shooting after 60 periods, variational, rtol %.0e, %d run(s)): median of %d %.4f s "
+                "(min %.4f, max %.4f)\n",
+                blade::blade_shooting_options(sys, false).stepper.rtol, v60.runs, repeats, v60_median,
+                v60_cpu.front(), v60_cpu.back());
     const Timed f60 = shoot_after(scene, 60, true, f60t);
     const Timed skipped{0, 0, false, "skipped (--quick)"};
     const Timed v10 = quick ? skipped : shoot_after(scene, 10, false, v10t);
@@ -212,7 +228,8 @@ int main(int argc, char** argv) {
                 opt.tolerance * scale, periods, transient_cpu, transient_cpu / v60t.cpu);
     j << (k ? "," : "") << "\n    {\"preload_N\": " << blade::jnum(p.preload) << ", \"orbit_ok\": " << (orbit.ok() ? "true" : "false")
       << ", \"events_per_period\": " << orbit.events.size() << ",\n     \"shooting_variational\": {\"after_60\": "
-      << json_timed(v60) << ", \"after_60_with_transient\": " << json_timed(v60t) << ", \"after_10\": " << json_timed(v10)
+      << json_timed(v60) << ", \"after_60_median_cpu_s\": " << blade::jnum(v60_median) << ", \"after_60_repeats\": "
+      << repeats << ", \"after_60_with_transient\": " << json_timed(v60t) << ", \"after_10\": " << json_timed(v10)
       << ", \"after_10_with_transient\": " << json_timed(v10t) << ", \"from_rest\": " << json_timed(v0) << "},\n"
       << "     \"shooting_finite_difference\": {\"after_60\": " << json_timed(f60) << ", \"after_60_with_transient\": "
       << json_timed(f60t) << ", \"after_10\": " << json_timed(f10) << ", \"after_10_with_transient\": " << json_timed(f10t)

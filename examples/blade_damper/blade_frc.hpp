@@ -261,6 +261,15 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
   // a residual of 1e-9 (the default) is at that floor and stalls the corrector; 1e-7 is far
   // below what a design plot can show.
   opt.tolerance = 1e-7;
+  // With the variational monodromy the runs need only be ~100x below that tolerance: rtol 1e-9
+  // (atol 1e-11) gives the same orbits as rtol 1e-13 to the Newton tolerance's own ~2e-9 of the
+  // state and the multipliers to 9 digits, in ~2/3 of the time of rtol 1e-10 (docs/steady_state.md,
+  // "Integration tolerance of the blade's orbits"). Finite differences of plain runs (h = 1e-6 of
+  // the state) keep rtol 1e-10: their columns divide the runs' error by h.
+  if (!fd) {
+    opt.stepper.rtol = 1e-9;
+    opt.stepper.atol = 1e-11;
+  }
   return opt;
 }
 
