@@ -86,36 +86,35 @@ struct JacobianCase {
 };
 
 TEST(Jacobian, MatchesCentralDifferencesInExactAndInexactModes) {
-  // Exact modes, 1e-9: A_m and the audit forms are exact (round-off ~1e-13); the X columns are
-  // the model's central differences at h = 1e-6 inside X's element (1 cm), truncation
-  // (h / 1 cm)^2 times the shapes' curvature (measured: at most 5e-11 over the nine states).
-  // Slip at a moving contact, 1e-8: the tangent of the solve (exact up to round-off) in every
-  // column but X, whose central differences at h = 1e-6 inside X's element are as in the exact
-  // modes; the reference's own error (~1e-12) and the X columns' truncation (measured below
-  // 1e-9) set it. The difference branch (a slip coefficient that varies with V), 1e-4: the
+  // Exact modes and slip at a moving contact, 1e-10: A_m and the audit forms (exact modes), the
+  // tangent of the solve (moving slip) and the contact columns X in closed form (both) are exact
+  // up to round-off; the reference's own error (~1e-12 of a row) sets the floor (measured: at
+  // most 2e-11 over the 21 states). The X columns were central differences at h = 1e-6 before
+  // (4e-9 off); dropping psi_w''' from dh/dX gives 1e-9, the stuck friction row's m b'^T q''
+  // 2e-5. The difference branch (a slip coefficient that varies with V), 1e-4: the
   // model's steps h = 1e-6 max(1, |x_j|) are 1 % of q ~ 1e-4, and the moving contact makes f
   // nonlinear in (q, q', X) (slope q^T psi'(X) times V times N): truncation (h/q)^2 ~ 1e-4
   // times those terms' share (measured 1e-6 to 1e-5) - the same steps as VariationalSystem's
   // own differences. A wrong or missing term is of the size of its row (error ~1).
   const std::vector<JacobianCase> cases = {
-      {"moving contact, all stuck (A_m, X columns by differences, audit rows)", true, NormalLoad::Inertial,
-       both(ContactState::Stick, ContactState::Stick), 1e-9},
+      {"moving contact, all stuck (A_m, X columns in closed form, audit rows)", true, NormalLoad::Inertial,
+       both(ContactState::Stick, ContactState::Stick), 1e-10},
       {"fixed contact, one slipping, constant N (exact slip)", false, NormalLoad::Constant,
-       both(ContactState::SlipPositive, ContactState::Stick), 1e-9},
+       both(ContactState::SlipPositive, ContactState::Stick), 1e-10},
       {"fixed contact, both slipping, inertial N (exact slip)", false, NormalLoad::Inertial,
-       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-9},
+       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-10},
       {"moving contact, one slipping (tangent of the solve)", true, NormalLoad::Inertial,
-       both(ContactState::SlipPositive, ContactState::Stick), 1e-8},
+       both(ContactState::SlipPositive, ContactState::Stick), 1e-10},
       {"moving contact, both slipping, inertial N (tangent)", true, NormalLoad::Inertial,
-       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-8},
+       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-10},
       {"moving contact, both slipping, constant N (tangent)", true, NormalLoad::Constant,
-       both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-8},
+       both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-10},
       {"moving contact, one slipping, no convective terms (tangent)", true, NormalLoad::Inertial,
-       both(ContactState::Stick, ContactState::SlipNegative), 1e-8, false},
+       both(ContactState::Stick, ContactState::SlipNegative), 1e-10, false},
       {"moving contact, regularised law (differences)", true, NormalLoad::Inertial,
        both(ContactState::SlipPositive, ContactState::SlipPositive), 1e-4, true, true},
       {"one moving and one fixed contact, both slipping (tangent)", true, NormalLoad::Inertial,
-       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-8, true, false, true},
+       both(ContactState::SlipNegative, ContactState::SlipPositive), 1e-10, true, false, true},
   };
   std::mt19937 rng(21);  // fixed seed
   for (const JacobianCase& c : cases) {

@@ -531,11 +531,12 @@ class FrictionDampedSystem {
   /// J = df/dx of rhs() in mode `mode` at (t, x), state_size() x state_size(). Where the mode is
   /// exact (linear_part: every damper stuck, or slipping or flying at a fixed contact under a
   /// CoulombLaw, no time_function load) J_LL = A_m of linear_part, the audit rows are
-  /// d(z^T Q_j z)/dx_L = ((Q_j + Q_j^T) z)_L and the contact-coordinate columns X (frozen in A_m)
-  /// are central differences of rhs. Where a contact slides along its member under a CoulombLaw
-  /// (no damper in flight or at a wall), every column but X is the tangent of the solve,
-  /// (A + L^T F) du = rho - L^T dr0, dq'' = dr0 + F du (docs/model.md, "Jacobian df/dx"); the
-  /// X columns are central differences. Elsewhere every column is a central difference,
+  /// d(z^T Q_j z)/dx_L = ((Q_j + Q_j^T) z)_L. Where a contact slides along its member under a
+  /// CoulombLaw (no damper in flight or at a wall), every column but X is the tangent of the
+  /// solve, (A + L^T F) du = rho - L^T dr0, dq'' = dr0 + F du (docs/model.md, "Jacobian df/dx").
+  /// In both cases the contact-coordinate columns X (frozen in A_m) are the same solve's
+  /// derivative in X (the shapes' derivatives up to psi_w''' at X), unless a damper is in flight
+  /// or at a wall: then central differences of rhs. Elsewhere every column is a central difference,
   /// (f(x + h e_j) - f(x - h e_j)) / 2h with h = 1e-6 max(1, |x_j|). J is NaN where the
   /// evaluation at x is not finite. Allocates nothing once J and the work vectors have their
   /// sizes. Throws std::invalid_argument on a wrong size of x or mode.
@@ -1661,6 +1662,18 @@ class FrictionDampedSystem {
   /// damper in flight or resting at a wall, or slipping under a law whose coefficient varies
   /// with V).
   bool tangent_jacobian(const Mode& mode, Scalar t, const State& x, Matrix& J);
+  /// The tangent's (and contact_columns') condition: no damper in flight or resting at a wall,
+  /// and every slipping damper's coefficient a constant (a CoulombLaw's mu_k).
+  bool tangent_applies(const Mode& mode) const {
+    using std::isnan;
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      if (mode[i] == ContactState::Separated || mode.wall(i) != WallRest::None) return false;
+      const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+      if (!stuck && isnan(kinetic_constant_[iu])) return false;
+    }
+    return true;
+  }
   // Workspace of tangent_jacobian: per unknown its row of the tangent right side and of du, the
   // gradients of one damper's scalars, its shapes at X, the capacitance matrix and its LU per
   // number of unknowns.
@@ -1668,6 +1681,13 @@ class FrictionDampedSystem {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> jac_gV_, jac_gs_, jac_gh_, jac_gd_, jac_gc_;
   typename Shapes::Values jac_shape_;
   std::vector<Eigen::PartialPivLU<Matrix>> jac_lu_;
+  /// The columns of the moving contacts' X in closed form (docs/model.md, "Jacobian df/dx"),
+  /// where the tangent applies (no damper in flight or at a wall, Coulomb slip); false, J
+  /// untouched, elsewhere. `lu_ready`: tangent_jacobian has just factorised A + L^T F at x.
+  bool contact_columns(const Mode& mode, Scalar t, const State& x, Matrix& J, bool lu_ready);
+  // Workspace of contact_columns: psi_w''' at X, the right side g = dr0/dX + (dF/dX) u of the
+  // tangent, dq''/dX and du/dX.
+  Vector jac_d3w_, jac_g_, jac_dqdd_, jac_dux_, jac_sol_;
   /// Damper i's shapes at its contact X into jac_shape_ (MemberShapes::evaluate).
   const typename Shapes::Values& jacobian_shapes(Index i, Scalar X) {
     const std::size_t iu = static_cast<std::size_t>(i);
@@ -2097,8 +2117,9 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
   J.resize(N, N);
   if (!exact_mode(mode)) {
     if (tangent_jacobian(mode, t, x, J)) {
-      for (Index i = 0; i < D_; ++i)
-        if (moving_[static_cast<std::size_t>(i)]) jacobian_column(mode, t, x, contact_offset() + i, J);
+      if (!contact_columns(mode, t, x, J, true))
+        for (Index i = 0; i < D_; ++i)
+          if (moving_[static_cast<std::size_t>(i)]) jacobian_column(mode, t, x, contact_offset() + i, J);
       return;
     }
     for (Index j = 0; j < N; ++j) jacobian_column(mode, t, x, j, J);
@@ -2131,20 +2152,14 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
       row.noalias() += Q.leftCols(P).transpose() * jac_z_;
     }
   }
-  if (options_.moving_contact)
+  if (options_.moving_contact && !contact_columns(mode, t, x, J, false))
     for (Index i = 0; i < D_; ++i) jacobian_column(mode, t, x, contact_offset() + i, J);
 }
 
 template <class Scalar_, class Law_, int Modes>
 bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mode, Scalar t, const State& x,
                                                                  Matrix& J) {
-  using std::isnan;
-  for (Index i = 0; i < D_; ++i) {
-    const std::size_t iu = static_cast<std::size_t>(i);
-    if (mode[i] == ContactState::Separated || mode.wall(i) != WallRest::None) return false;
-    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
-    if (!stuck && isnan(kinetic_constant_[iu])) return false;
-  }
+  if (!tangent_applies(mode)) return false;
   // (every path that forms F_, L_, A_, u_ for another state - the frozen probes, the impulse
   // response, resolve - invalidates the cache, so after evaluate() they are x's)
   const Evaluation& e = evaluate(mode, t, x);
@@ -2276,6 +2291,147 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
       if (unknown >= 0) J.row(o + 3) -= (sl * V) * jac_du_.row(unknown);
       J.row(o + 3) -= (Ni * sl) * jac_gV_;
       J.row(o + 3).head(n) -= (Ni * V * dmp.side) * jacobian_shapes(i, e.X[i]).dpsi_w.transpose();
+    }
+  }
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mode, Scalar t, const State& x,
+                                                                Matrix& J, bool lu_ready) {
+  using std::abs;
+  if (!tangent_applies(mode)) return false;
+  // The solve A u + L^T q'' = c, q'' = r0 + F u at x (cached when rhs or the tangent just ran).
+  const Evaluation& e = evaluate(mode, t, x);
+  const Index n = n_, U = num_unknowns_;
+  if (!e.finite) {
+    for (Index i = 0; i < D_; ++i)
+      if (moving_[static_cast<std::size_t>(i)]) J.col(contact_offset() + i).setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return true;
+  }
+  Eigen::PartialPivLU<Matrix>* lu = nullptr;
+  if (U > 0) {
+    if (jac_lu_.size() < static_cast<std::size_t>(U + 1)) jac_lu_.resize(static_cast<std::size_t>(U + 1));
+    lu = &jac_lu_[static_cast<std::size_t>(U)];
+    if (!lu_ready) {
+      if (lu->rows() != U) *lu = Eigen::PartialPivLU<Matrix>(U);
+      jac_S_.noalias() = L_.topLeftCorner(n, U).transpose() * F_.topLeftCorner(n, U);
+      jac_S_.diagonal() += A_.head(U);
+      lu->compute(jac_S_);
+    }
+  }
+  jac_d3w_.resize(n);
+  jac_g_.resize(n);
+  jac_dqdd_.resize(n);
+  jac_dux_.resize(std::max<Index>(U, 1));
+  jac_sol_.resize(std::max<Index>(U, 1));
+  const auto q = x.segment(0, n), qd = x.segment(n, n), qdd = e.qdd.head(n);
+  const bool audit = options_.energy_audit, convective = options_.convective_terms;
+  const Index o = audit ? energy_offset() : -1;
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const Index cX = contact_offset() + i;
+    J.col(cX).setZero();
+    if (!moving_[iu]) continue;  // X_i stays X0: f does not depend on it
+    // Shapes at X and their X-derivatives: b = psi_u, b' = psi_u' (psi_u'' = 0: linear in the
+    // element), a = s psi_w, a' = s psi_w', and psi_w''' = B (0, w1''', t1''', 0, w2''', t2''')
+    // (constant in the element: 12/Le^3, 6/Le^2, -12/Le^3, 6/Le^2).
+    const Damper& dmp = dampers_[iu];
+    const Shapes& shapes = shapes_[static_cast<std::size_t>(damper_shape_[iu])];
+    const typename Shapes::Location loc = shapes.locate(e.X[i], cursors_[iu]);
+    {
+      const auto B = element_block(iu, loc.element);
+      const Scalar inv = loc.weights.du, w3 = Scalar(12) * inv * inv * inv, t3 = Scalar(6) * inv * inv;
+      jac_d3w_.noalias() = w3 * (B.col(1) - B.col(4)) + t3 * (B.col(2) + B.col(5));
+    }
+    const auto& v = jacobian_shapes(i, e.X[i]);
+    const Scalar sd = dmp.side, m = dmp.effective_mass(), k = dmp.effective_stiffness();
+    const Scalar xi = x[x_offset() + i];
+    const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
+    Index jN = -1, jf = -1;  // the rows of N_i and (stuck) f_i among the unknowns
+    for (Index j = 0; j < U; ++j) {
+      const Index col = unknown_of_[static_cast<std::size_t>(j)];
+      if (col == i) jN = j;
+      if (col == D_ + i) jf = j;
+    }
+    // d/dX of the solve: (A + L^T F) du = rho - L^T g, dq'' = g + F du, with
+    // rho_j = (dc_j - dA_j u_j - dL_j^T q'') / s_j in damper i's rows and g = dr0 + dF u.
+    jac_g_.setZero();
+    jac_dux_.setZero();
+    const Scalar slope = sd * v.dpsi_w.dot(q), dslope = sd * v.ddpsi_w.dot(q);
+    Scalar dV = 0;  // dV/dX of a slipping damper (V = x_d' - b^T q')
+    if (stuck) {
+      if (jN >= 0) {  // N + m a^T q'' = N0: F_j = a, L_j = m a
+        jac_g_.noalias() += (sd * u_[jN]) * v.dpsi_w;
+        jac_dux_[jN] = -m * sd * v.dpsi_w.dot(qdd);
+      } else {  // N0 a in r0
+        jac_g_.noalias() += (sd * dmp.preload) * v.dpsi_w;
+      }
+      if (jf >= 0) {  // f - m b^T q'' = k x_d: F_j = -b, L_j = -m b
+        jac_g_.noalias() -= u_[jf] * v.dpsi_u;
+        jac_dux_[jf] = m * v.dpsi_u.dot(qdd);
+      }
+    } else {
+      const Scalar mu = mu_[i], V = e.V[i];
+      dV = -v.dpsi_u.dot(qd);
+      if (jN >= 0) {  // F_j = a + mu b, L_j = m (a - sc b), A_j = 1 - sc mu, c_j = N0 - m h + sc k x_d + m sc dd
+        const Scalar Ni = u_[jN];
+        jac_g_.noalias() += Ni * (sd * v.dpsi_w + mu * v.dpsi_u);
+        Scalar rho = -m * sd * v.dpsi_w.dot(qdd), diag = Scalar(1);
+        if (convective) {
+          const Scalar sc = slope, dsc = dslope;
+          const Scalar dw_qd = sd * v.dpsi_w.dot(qd), ddw_q = sd * v.ddpsi_w.dot(q);
+          const Scalar d_dw_qd = sd * v.ddpsi_w.dot(qd), d_ddw_q = sd * jac_d3w_.dot(q);
+          const Scalar du_qd = v.dpsi_u.dot(qd), dd = du_qd * V, d_dd = du_qd * dV;
+          const Scalar dh = Scalar(2) * (d_dw_qd * V + dw_qd * dV) + d_ddw_q * V * V + Scalar(2) * ddw_q * V * dV;
+          const Scalar dc = -m * dh + dsc * k * xi + m * dsc * dd + m * sc * d_dd;
+          const Scalar dA = -dsc * mu;
+          // dL = m (a' - sc' b - sc b')
+          rho += dc - dA * Ni + m * (dsc * v.psi_u.dot(qdd) + sc * v.dpsi_u.dot(qdd));
+          diag = Scalar(1) - sc * mu;
+        }
+        const Scalar s_j = diag != Scalar(1) && abs(diag) >= Scalar(0.5) ? diag : Scalar(1);
+        jac_dux_[jN] = rho / s_j;
+      } else {  // N0 (a + mu b) in r0
+        jac_g_.noalias() += dmp.preload * (sd * v.dpsi_w + mu * v.dpsi_u);
+      }
+    }
+    auto du = jac_sol_.head(U);
+    if (U > 0) {
+      jac_dux_.head(U).noalias() -= L_.topLeftCorner(n, U).transpose() * jac_g_;
+      du.noalias() = lu->solve(jac_dux_.head(U));
+      jac_dqdd_.noalias() = jac_g_ + F_.topLeftCorner(n, U) * du;
+    } else {
+      jac_dqdd_ = jac_g_;
+    }
+    auto col = J.col(cX);
+    col.segment(n, n) = jac_dqdd_;
+    // Per damper l: x_d'' (stick: b_l^T q''; slip: (-mu N_l - k x_d) / m), X' = V (moving slip)
+    // and the audit's friction and slope power; dN_l, df_l from du.
+    for (Index l = 0; l < D_; ++l) {
+      const std::size_t lw = static_cast<std::size_t>(l);
+      const Damper& dl = dampers_[lw];
+      const bool l_stuck = has_stick_[lw] && mode[l] == ContactState::Stick;
+      Index l_unknown = -1;
+      for (Index j = 0; j < U; ++j)
+        if (unknown_of_[static_cast<std::size_t>(j)] == l) l_unknown = j;
+      const Scalar dN = l_unknown >= 0 ? du[l_unknown] : Scalar(0);
+      if (l_stuck) {
+        const auto bl = C_.col(D_ + l).head(n);
+        col[xd_offset() + l] = bl.dot(jac_dqdd_) + (l == i ? v.dpsi_u.dot(qdd) : Scalar(0));
+        continue;
+      }
+      const Scalar mu = mu_[l];
+      col[xd_offset() + l] = -mu * dN / dl.effective_mass();
+      const Scalar dVl = l == i ? dV : Scalar(0);
+      if (l == i) col[cX] = dV;  // X' = V
+      if (!audit) continue;
+      const Scalar Vl = e.V[l], Nl = e.N[l], fl = e.f[l];
+      col[o + 2] += Vl * mu * dN - fl * dVl;  // D_fric' = -f V, df = -mu dN
+      if (moving_[lw]) {  // W_slope' = -N slope V
+        const Scalar sl = e.slope[l], dsl = l == i ? dslope : Scalar(0);
+        col[o + 3] -= dN * sl * Vl + Nl * dsl * Vl + Nl * sl * dVl;
+      }
     }
   }
   return true;
