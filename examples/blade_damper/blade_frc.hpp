@@ -137,6 +137,11 @@ struct FrcPoint {
   int iterations = 0;        ///< corrector iterations (orbit runs) of the point
   double residual = 0;       ///< |x_P(T) - x_P(0)| max norm
   double cpu_seconds = 0;    ///< CPU time since the previous point (or the branch start)
+  /// 0: a point of the branch; k > 0 (with --frc-parts): a point of part k's own branch, which
+  /// the joined branch never reached (stickslip::SplitContinuationResult::dropped: an earlier
+  /// part ended first, e.g. at a nonsmooth point) - a separate segment of the curve, from its own
+  /// start orbit at the part's start frequency, not connected to the branch.
+  int segment = 0;
 };
 
 /// A branch at one preload and how it ended.
@@ -441,6 +446,13 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     for (std::size_t i = 0; i < result.parts[k].kept; ++i) b.points.push_back(part_points[k][i]);
     if (result.parts[k].kept > 0) last = k;
   }
+  // The parts the branch never reached: their own points, as separate segments after it.
+  for (std::size_t k = 1; k < n; ++k)
+    if (result.parts[k].kept == 0)
+      for (FrcPoint f : part_points[k]) {
+        f.segment = static_cast<int>(k);
+        b.points.push_back(f);
+      }
   *scene.system = systems[last];  // as the single Continuation leaves it
   b.wall_seconds = elapsed();
   return b;
@@ -488,7 +500,10 @@ inline std::string json_escape(const std::string& text) {
 inline std::string frc_part_line(std::size_t k, const stickslip::ContinuationPart<double>& part) {
   char t[160];
   std::snprintf(t, sizeof t, "part %zu from %.3f Hz: %s, %zu of %zu points kept%s", k, part.start_parameter,
-                stickslip::to_string(part.status), part.kept, part.points, part.joined ? ", joined the next" : "");
+                stickslip::to_string(part.status), part.kept, part.points,
+                part.joined                        ? ", joined the next"
+                : part.kept == 0 && part.points > 0 ? " in the branch (written as a separate segment)"
+                                                    : "");
   return t;
 }
 
@@ -498,14 +513,14 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   {
     std::ofstream o(out / "frc.csv");
     o << "preload_N,frequency_hz,tip_amplitude_m,tip_max_abs_m,stable,instability,max_multiplier,regime,stick_fraction_1,"
-         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s\n";
+         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s,segment\n";
     for (const auto& b : branches)
       for (const auto& f : b.points)
         o << fmt(f.preload) << ',' << fmt(f.omega / (2 * M_PI)) << ',' << fmt(f.tip_amplitude) << ',' << fmt(f.tip_max_abs) << ','
           << (f.stable ? 1 : 0) << ',' << f.instability << ',' << fmt(f.max_multiplier) << ',' << f.regime << ','
           << fmt(f.stick_fraction[0]) << ',' << fmt(f.stick_fraction[1]) << ',' << fmt(f.switches_per_period[0])
           << ',' << fmt(f.switches_per_period[1]) << ',' << f.iterations << ',' << fmt(f.residual) << ','
-          << fmt(f.cpu_seconds) << '\n';
+          << fmt(f.cpu_seconds) << ',' << f.segment << '\n';
   }
   {
     std::ofstream o(out / "frc_linear.csv");
@@ -530,6 +545,8 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
                                        [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
+      << ", \"separate_segment_points\": "
+      << std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; })
       << ", \"cpu_s\": " << jnum(b.cpu_seconds) << ", \"wall_s\": " << jnum(b.wall_seconds) << ", \"parts\": [";
     for (std::size_t q = 0; q < b.parts.size(); ++q)
       j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
@@ -576,8 +593,11 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
                   f.stick_fraction[1], f.iterations, f.cpu_seconds);
       std::fflush(stdout);
     });
-    std::printf("frc N0 %g N: %s, %zu points, %.1f s CPU, %.1f s elapsed%s%s\n", n0, b.status.c_str(), b.points.size(),
-                b.cpu_seconds, b.wall_seconds, b.message.empty() ? "" : ": ", b.message.c_str());
+    const auto separate =
+        std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; });
+    std::printf("frc N0 %g N: %s, %zu points (%ld of them in separate segments), %.1f s CPU, %.1f s elapsed%s%s\n", n0,
+                b.status.c_str(), b.points.size(), static_cast<long>(separate), b.cpu_seconds, b.wall_seconds,
+                b.message.empty() ? "" : ": ", b.message.c_str());
     for (std::size_t k = 0; k < b.parts.size(); ++k)
       std::printf("frc N0 %g N:   %s\n", n0, frc_part_line(k, b.parts[k]).c_str());
     b.linear = std::move(linear);

@@ -103,7 +103,8 @@ Usage: blade_damper [options]
                          (default 8)
   --frc-parts n          (after --frc) each branch in n parts at once, one thread each
                          (stickslip::SplitContinuation; default: the hardware
-                         threads, at most 4; 1: one Continuation)
+                         threads, at most 4; 1: one Continuation); a part the
+                         branch never reached is written as a separate segment
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)

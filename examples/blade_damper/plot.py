@@ -221,6 +221,9 @@ def plot_frc(out):
         f = [float(r["frequency_hz"]) for r in pts]
         a = [float(r["tip_amplitude_m"]) for r in pts]
         stable = [r["stable"] == "1" for r in pts]
+        # segment 0: the branch; k > 0: a part's own branch that the branch never reached
+        # (--frc-parts), drawn apart: no line joins two segments
+        segment = [int(r.get("segment", "0") or 0) for r in pts]
         line = plt.cm.Set1(k)
         if lin:  # the linear limits at this preload (the damper mass depends on N0)
             idx = [i for i, v in enumerate(lin["preload_N"]) if v == n0]
@@ -230,8 +233,15 @@ def plot_frc(out):
             ax.semilogy(fl, [lin["tip_frictionless_m"][i] for i in idx], color=line, lw=0.7, ls=":", alpha=0.6,
                         label=f"frictionless mu = 0, linear (N0 = {n0:g} N)")
         for i in range(len(pts) - 1):  # segment style from its two ends: dashed unless both stable
-            ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4, ls="-" if stable[i] and stable[i + 1] else "--",
-                        label=f"N0 = {n0:g} N" if i == 0 else None)
+            if segment[i] != segment[i + 1]:
+                continue
+            label = None
+            if i == 0:
+                label = f"N0 = {n0:g} N"
+            elif segment[i] > 0 and segment[i - 1] != segment[i]:
+                label = f"N0 = {n0:g} N, separate segment from {f[i]:.2f} Hz"
+            ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4 if segment[i] == 0 else 1.0,
+                        ls="-" if stable[i] and stable[i + 1] else "--", label=label)
         ax.scatter(f, a, s=9, zorder=3, c=[colour[r["regime"]] for r in pts])
     for g in regimes:
         ax.scatter([], [], s=12, color=colour[g], label=f"regime: {g}")
