@@ -137,10 +137,10 @@ struct FrcPoint {
   int iterations = 0;        ///< corrector iterations (orbit runs) of the point
   double residual = 0;       ///< |x_P(T) - x_P(0)| max norm
   double cpu_seconds = 0;    ///< CPU time since the previous point (or the branch start)
-  /// 0: a point of the branch; k > 0 (with --frc-parts): a point of part k's own branch, which
-  /// the joined branch never reached (stickslip::SplitContinuationResult::dropped: an earlier
-  /// part ended first, e.g. at a nonsmooth point) - a separate segment of the curve, from its own
-  /// start orbit at the part's start frequency, not connected to the branch.
+  /// 0: a point of the branch; k > 0: a separate segment of the curve, not connected to the
+  /// branch - with --frc-parts, part k's own branch, which the joined branch never reached
+  /// (stickslip::SplitContinuationResult::dropped: an earlier part ended first, e.g. at a
+  /// nonsmooth point); then the restarts past a stall (FrcSettings::restarts), numbered on.
   int segment = 0;
 };
 
@@ -159,6 +159,7 @@ struct FrcBranch {
   /// With FrcSettings::parts > 1: per part, its start (start_parameter: the frequency in Hz),
   /// the points kept and whether it joined the next (stickslip::SplitContinuation).
   std::vector<stickslip::ContinuationPart<double>> parts;
+  int restarts = 0;  ///< segments started past a stall (FrcSettings::restarts)
   std::vector<FrcPoint> points;
 };
 
@@ -242,6 +243,12 @@ struct FrcSettings {
   /// one Continuation). Each part starts from its own transient and shooting. Default: the
   /// machine's hardware threads, at most 4.
   int parts = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 4);
+  /// Restarts past a stall: when a branch ends with step_too_small short of f_hi (a nonsmooth
+  /// point the corrector cannot pass, docs/steady_state.md), a new segment starts from its own
+  /// transient and shooting at restart_gap (a fraction of the range) beyond the farthest point
+  /// computed, up to this many times per preload. 0: none.
+  int restarts = 3;
+  double restart_gap = 0.01;  ///< the gap before a restart, as a fraction of f_hi - f_lo
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -545,7 +552,7 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
                                        [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
-      << ", \"separate_segment_points\": "
+      << ", \"restarts\": " << b.restarts << ", \"separate_segment_points\": "
       << std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; })
       << ", \"cpu_s\": " << jnum(b.cpu_seconds) << ", \"wall_s\": " << jnum(b.wall_seconds) << ", \"parts\": [";
     for (std::size_t q = 0; q < b.parts.size(); ++q)
@@ -559,6 +566,54 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
     j << "}";
   }
   j << "\n  ]\n}\n";
+}
+
+/// FrcSettings::restarts: after a branch that stalled (step_too_small) short of f_hi, new
+/// segments (FrcPoint::segment = the next number), each a branch of its own (one part) from its
+/// own transient at restart_gap (x range) beyond the farthest frequency computed or tried so
+/// far (a start that fails moves the next one a gap further), until one completes or ends
+/// otherwise (max_points) or the restarts run out. The points in the gap are not computed;
+/// the segment after it may lie on another branch (e.g. past a fold, the orbit a slow sweep
+/// would jump to). b's status and message become those of the last segment.
+inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
+                         const std::function<void(const FrcPoint&)>& progress) {
+  int segment = 0;
+  double f_far = s.f_lo;  // the farthest frequency reached or tried
+  for (const FrcPoint& f : b.points) {
+    segment = std::max(segment, f.segment);
+    f_far = std::max(f_far, f.omega / (2 * M_PI));
+  }
+  for (int r = 0; r < s.restarts && (b.status == "step_too_small" || (r > 0 && b.status == "start_failed")); ++r) {
+    FrcSettings sr = s;
+    sr.f_lo = f_far + s.restart_gap * (s.f_hi - s.f_lo);
+    sr.parts = 1;
+    sr.restarts = 0;
+    // Next to a stall the response is near a resonance or a change of regime: a longer transient
+    // and more Newton iterations for the start than at f_lo.
+    sr.transient_periods = 3 * s.transient_periods;
+    sr.max_newton_iterations = std::max(s.max_newton_iterations, 20);
+    if (!(sr.f_lo < s.f_hi)) break;
+    std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its own transient)\n",
+                b.preload, sr.f_lo, b.status.c_str(), f_far, segment + 1);
+    f_far = sr.f_lo;  // a start that fails here makes the next restart try one gap further
+    std::fflush(stdout);
+    const FrcBranch next = frc_branch(scene, sr, frc_state_scale(scene, sr), [&](const FrcPoint& f) {
+      FrcPoint g = f;
+      g.segment = segment + 1;
+      if (progress) progress(g);
+    });
+    if (!next.points.empty()) ++segment;
+    for (FrcPoint f : next.points) {
+      f.segment = segment;
+      b.points.push_back(f);
+      f_far = std::max(f_far, f.omega / (2 * M_PI));
+    }
+    b.status = next.status;
+    b.message = next.message;
+    b.cpu_seconds += next.cpu_seconds;
+    b.wall_seconds += next.wall_seconds;
+    ++b.restarts;
+  }
 }
 
 /// `blade_damper --frc f_lo:f_hi`: a branch per preload (scene `p` at each of `preloads`), the
@@ -586,13 +641,15 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
     std::printf("frc N0 %g N: lowest mode %.2f Hz all stuck, %.2f Hz frictionless (the model's linear part)\n", n0,
                 stuck_hz.empty() ? 0.0 : stuck_hz[0], free_hz.empty() ? 0.0 : free_hz[0]);
     int count = 0;
-    auto b = frc_branch(sc, s, frc_state_scale(sc, s), [&](const FrcPoint& f) {
+    const auto progress = [&](const FrcPoint& f) {
       std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s\n", n0,
                   ++count, f.omega / (2 * M_PI), f.tip_amplitude,
                   f.stable ? "stable" : f.instability.c_str(), f.regime.c_str(), f.stick_fraction[0],
                   f.stick_fraction[1], f.iterations, f.cpu_seconds);
       std::fflush(stdout);
-    });
+    };
+    auto b = frc_branch(sc, s, frc_state_scale(sc, s), progress);
+    frc_restarts(sc, s, b, progress);
     const auto separate =
         std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; });
     std::printf("frc N0 %g N: %s, %zu points (%ld of them in separate segments), %.1f s CPU, %.1f s elapsed%s%s\n", n0,

@@ -105,6 +105,10 @@ Usage: blade_damper [options]
                          (stickslip::SplitContinuation; default: the hardware
                          threads, at most 4; 1: one Continuation); a part the
                          branch never reached is written as a separate segment
+  --frc-restarts n       (after --frc) after a branch stalls short of f_hi (a
+                         nonsmooth point), start a new segment from its own
+                         transient 1 % of the range beyond it, at most n times
+                         (default 3; 0: none)
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)
@@ -199,6 +203,10 @@ Cli parse(int argc, char** argv) {
       if (!c.frc) throw std::invalid_argument("--frc-parts must follow --frc");
       c.frc->parts = std::stoi(need(i));
       if (c.frc->parts <= 0) throw std::invalid_argument("--frc-parts must be > 0");
+    } else if (a == "--frc-restarts") {
+      if (!c.frc) throw std::invalid_argument("--frc-restarts must follow --frc");
+      c.frc->restarts = std::stoi(need(i));
+      if (c.frc->restarts < 0) throw std::invalid_argument("--frc-restarts must be >= 0");
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;
