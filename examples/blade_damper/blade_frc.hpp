@@ -159,8 +159,13 @@ struct FrcBranch {
   /// With FrcSettings::parts > 1: per part, its start (start_parameter: the frequency in Hz),
   /// the points kept and whether it joined the next (stickslip::SplitContinuation).
   std::vector<stickslip::ContinuationPart<double>> parts;
-  int restarts = 0;  ///< segments started past a stall (FrcSettings::restarts)
+  int restarts = 0;  ///< restart attempts past a stall, failed starts included (FrcSettings::restarts)
   std::vector<FrcPoint> points;
+  /// Points in separate segments (FrcPoint::segment > 0).
+  std::size_t separate_points() const {
+    return static_cast<std::size_t>(
+        std::count_if(points.begin(), points.end(), [](const FrcPoint& f) { return f.segment > 0; }));
+  }
 };
 
 /// Stick fraction and switches of damper i over one period of an orbit
@@ -552,8 +557,7 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
                                        [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
-      << ", \"restarts\": " << b.restarts << ", \"separate_segment_points\": "
-      << std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; })
+      << ", \"restarts\": " << b.restarts << ", \"separate_segment_points\": " << b.separate_points()
       << ", \"cpu_s\": " << jnum(b.cpu_seconds) << ", \"wall_s\": " << jnum(b.wall_seconds) << ", \"parts\": [";
     for (std::size_t q = 0; q < b.parts.size(); ++q)
       j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
@@ -650,10 +654,8 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
     };
     auto b = frc_branch(sc, s, frc_state_scale(sc, s), progress);
     frc_restarts(sc, s, b, progress);
-    const auto separate =
-        std::count_if(b.points.begin(), b.points.end(), [](const FrcPoint& f) { return f.segment > 0; });
-    std::printf("frc N0 %g N: %s, %zu points (%ld of them in separate segments), %.1f s CPU, %.1f s elapsed%s%s\n", n0,
-                b.status.c_str(), b.points.size(), static_cast<long>(separate), b.cpu_seconds, b.wall_seconds,
+    std::printf("frc N0 %g N: %s, %zu points (%zu of them in separate segments), %.1f s CPU, %.1f s elapsed%s%s\n", n0,
+                b.status.c_str(), b.points.size(), b.separate_points(), b.cpu_seconds, b.wall_seconds,
                 b.message.empty() ? "" : ": ", b.message.c_str());
     for (std::size_t k = 0; k < b.parts.size(); ++k)
       std::printf("frc N0 %g N:   %s\n", n0, frc_part_line(k, b.parts[k]).c_str());

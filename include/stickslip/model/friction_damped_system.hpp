@@ -1688,6 +1688,24 @@ class FrictionDampedSystem {
   // Workspace of contact_columns: psi_w''' at X, the right side g = dr0/dX + (dF/dX) u of the
   // tangent, dq''/dX and du/dX.
   Vector jac_d3w_, jac_g_, jac_dqdd_, jac_dux_, jac_sol_;
+  /// The LU of the tangent's capacitance matrix A + L^T F (U unknowns) of the last evaluation.
+  Eigen::PartialPivLU<Matrix>& tangent_lu(Index U) {
+    if (jac_lu_.size() <= static_cast<std::size_t>(U))  // U <= 2D: one slot per count, made once
+      jac_lu_.resize(static_cast<std::size_t>(std::max(U, 2 * D_) + 1));
+    Eigen::PartialPivLU<Matrix>& lu = jac_lu_[static_cast<std::size_t>(U)];
+    if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
+    jac_S_.noalias() = L_.topLeftCorner(n_, U).transpose() * F_.topLeftCorner(n_, U);
+    jac_S_.diagonal() += A_.head(U);
+    lu.compute(jac_S_);
+    return lu;
+  }
+  /// The row of `column` (N_i: i; a stuck damper's f_i: D + i) among the last solve's unknowns,
+  /// or -1 (a constant normal load).
+  Index unknown_row(Index column) const {
+    for (Index j = 0; j < num_unknowns_; ++j)
+      if (unknown_of_[static_cast<std::size_t>(j)] == column) return j;
+    return -1;
+  }
   /// Damper i's shapes at its contact X into jac_shape_ (MemberShapes::evaluate).
   const typename Shapes::Values& jacobian_shapes(Index i, Scalar X) {
     const std::size_t iu = static_cast<std::size_t>(i);
@@ -2173,7 +2191,6 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     jac_du_.setZero(D2, N);
     for (auto* g : {&jac_gV_, &jac_gs_, &jac_gh_, &jac_gd_, &jac_gc_}) g->setZero(N);
     jac_shape_.resize(n);
-    jac_lu_.assign(static_cast<std::size_t>(D2 + 1), Eigen::PartialPivLU<Matrix>());
   }
   J.setZero();
   const Index qd0 = n;  // first q' column
@@ -2234,11 +2251,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     const auto L = L_.topLeftCorner(n, U);
     rho.leftCols(n).noalias() += L.transpose() * omega2_.asDiagonal();
     rho.middleCols(qd0, n).noalias() += L.transpose() * modal_damping_.asDiagonal();
-    Eigen::PartialPivLU<Matrix>& lu = jac_lu_[static_cast<std::size_t>(U)];
-    if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
-    jac_S_.noalias() = L.transpose() * F;
-    jac_S_.diagonal() += A_.head(U);
-    lu.compute(jac_S_);
+    Eigen::PartialPivLU<Matrix>& lu = tangent_lu(U);
     auto du = jac_du_.topRows(U);
     du.noalias() = lu.solve(rho);
     qdd_rows.noalias() = F * du;
@@ -2265,9 +2278,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
       J.row(xd_offset() + i).noalias() = C_.col(D_ + i).head(n).transpose() * qdd_rows;
       continue;
     }
-    Index unknown = -1;
-    for (Index j = 0; j < U; ++j)
-      if (unknown_of_[static_cast<std::size_t>(j)] == i) unknown = j;
+    const Index unknown = unknown_row(i);
     // x_d'' = (f - k x_d) / m, f = -mu N
     const Scalar mu = mu_[i];
     if (unknown >= 0) J.row(xd_offset() + i) = (-mu / m) * jac_du_.row(unknown);
@@ -2310,16 +2321,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
     return true;
   }
   Eigen::PartialPivLU<Matrix>* lu = nullptr;
-  if (U > 0) {
-    if (jac_lu_.size() < static_cast<std::size_t>(U + 1)) jac_lu_.resize(static_cast<std::size_t>(U + 1));
-    lu = &jac_lu_[static_cast<std::size_t>(U)];
-    if (!lu_ready) {
-      if (lu->rows() != U) *lu = Eigen::PartialPivLU<Matrix>(U);
-      jac_S_.noalias() = L_.topLeftCorner(n, U).transpose() * F_.topLeftCorner(n, U);
-      jac_S_.diagonal() += A_.head(U);
-      lu->compute(jac_S_);
-    }
-  }
+  if (U > 0) lu = lu_ready ? &jac_lu_[static_cast<std::size_t>(U)] : &tangent_lu(U);
   jac_d3w_.resize(n);
   jac_g_.resize(n);
   jac_dqdd_.resize(n);
@@ -2348,12 +2350,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
     const Scalar sd = dmp.side, m = dmp.effective_mass(), k = dmp.effective_stiffness();
     const Scalar xi = x[x_offset() + i];
     const bool stuck = has_stick_[iu] && mode[i] == ContactState::Stick;
-    Index jN = -1, jf = -1;  // the rows of N_i and (stuck) f_i among the unknowns
-    for (Index j = 0; j < U; ++j) {
-      const Index col = unknown_of_[static_cast<std::size_t>(j)];
-      if (col == i) jN = j;
-      if (col == D_ + i) jf = j;
-    }
+    const Index jN = unknown_row(i), jf = unknown_row(D_ + i);  // N_i's and (stuck) f_i's rows
     // d/dX of the solve: (A + L^T F) du = rho - L^T g, dq'' = g + F du, with
     // rho_j = (dc_j - dA_j u_j - dL_j^T q'') / s_j in damper i's rows and g = dr0 + dF u.
     jac_g_.setZero();
@@ -2412,9 +2409,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
       const std::size_t lw = static_cast<std::size_t>(l);
       const Damper& dl = dampers_[lw];
       const bool l_stuck = has_stick_[lw] && mode[l] == ContactState::Stick;
-      Index l_unknown = -1;
-      for (Index j = 0; j < U; ++j)
-        if (unknown_of_[static_cast<std::size_t>(j)] == l) l_unknown = j;
+      const Index l_unknown = unknown_row(l);
       const Scalar dN = l_unknown >= 0 ? du[l_unknown] : Scalar(0);
       if (l_stuck) {
         const auto bl = C_.col(D_ + l).head(n);
