@@ -142,6 +142,18 @@ struct FrcPoint {
   /// (stickslip::SplitContinuationResult::dropped: an earlier part ended first, e.g. at a
   /// nonsmooth point); then the restarts past a stall (FrcSettings::restarts), numbered on.
   int segment = 0;
+  /// The orbit's period in forcing periods: 1, or k > 1 for a subharmonic orbit (period k T)
+  /// found after a restart where the response repeats every k periods (FrcSettings::restarts).
+  int period = 1;
+};
+
+/// Where a restart found no periodic response (stickslip::poincare_sections: no k <= 8): the
+/// tip's half peak-to-peak in each recorded forcing period of the transient - a column of a
+/// brute-force bifurcation diagram.
+struct FrcPoincare {
+  double frequency_hz = 0;
+  std::vector<double> tip_amplitudes;  ///< per recorded period [m]
+  double recurrence = 0;               ///< the smallest recurrence over k = 1..8 (relative)
 };
 
 /// A branch at one preload and how it ended.
@@ -161,6 +173,8 @@ struct FrcBranch {
   std::vector<stickslip::ContinuationPart<double>> parts;
   int restarts = 0;  ///< restart attempts past a stall, failed starts included (FrcSettings::restarts)
   std::vector<FrcPoint> points;
+  /// The restarts' frequencies where the response was not periodic (FrcSettings::restarts).
+  std::vector<FrcPoincare> not_periodic;
   /// Points in separate segments (FrcPoint::segment > 0).
   std::size_t separate_points() const {
     return static_cast<std::size_t>(
@@ -252,8 +266,11 @@ struct FrcSettings {
   /// point the corrector cannot pass, docs/steady_state.md), a new segment starts from its own
   /// transient and shooting at restart_gap (a fraction of the range) beyond the farthest point
   /// computed, up to this many times per preload. 0: none.
-  int restarts = 3;
+  int restarts = 8;
   double restart_gap = 0.01;  ///< the gap before a restart, as a fraction of f_hi - f_lo
+  /// The orbits' period in forcing periods (k T): 1, or k > 1 for a branch of subharmonic orbits
+  /// (set by a restart whose Poincaré sections repeat every k periods).
+  int period_multiple = 1;
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -295,7 +312,8 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
 /// then shooting from t0 = 0. Returns the orbit (check ok()).
 inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene::System& sys, double force_omega,
                                                                       int periods,
-                                                                      const stickslip::ShootingOptions<double>& opt) {
+                                                                      const stickslip::ShootingOptions<double>& opt,
+                                                                      int period_multiple = 1) {
   const double T = 2 * M_PI / force_omega;
   BladeScene::System::State x0 = sys.initial_state();
   BladeScene::System::Mode mode = sys.requested_mode();
@@ -312,7 +330,7 @@ inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene
   // The load F sin(omega t) repeats every T: the state after whole periods is the orbit's at
   // t0 = 0, and t0 = 0 keeps the forcing phase at t0 fixed along a frequency branch (a later t0
   // would turn it by t0 d omega).
-  return shooting.forced(transient.mode, 0.0, transient.x, T);
+  return shooting.forced(transient.mode, 0.0, transient.x, period_multiple * T);
 }
 
 /// One frequency-response branch of `scene` at its preload over [f_lo, f_hi] (Hz), from the
@@ -340,10 +358,10 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
-  auto start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt);
+  auto start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
   if (opt.monodromy == stickslip::MonodromyMethod::FiniteDifference && (!start.ok() || start.events.empty())) {
     opt.monodromy = stickslip::MonodromyMethod::Variational;
-    start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt);
+    start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
   }
   b.monodromy = stickslip::to_string(opt.monodromy);
   if (!start.ok()) {
@@ -377,12 +395,14 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     q.force_omega = par * unit;
     sys = make_blade_system(scene, q);
   };
-  auto period_of = [unit](double par) { return 2 * M_PI / (par * unit); };
+  const int k_T = s.period_multiple;
+  auto period_of = [unit, k_T](double par) { return k_T * 2 * M_PI / (par * unit); };
   // One point of the curve from an orbit of the branch on `sys` (its tip range is one more run).
   auto make_point = [&scene, &opt, &b, unit](System& sys, const stickslip::ContinuationPoint<System>& pt,
                                              double& cpu_mark) {
     FrcPoint f;
     f.preload = b.preload;
+    f.period = static_cast<int>(std::lround(pt.orbit.period * pt.parameter * unit / (2 * M_PI)));
     f.omega = pt.parameter * unit;
     const auto range = orbit_tip_range(scene, sys, pt.orbit, opt);
     f.tip_amplitude = (range[1] - range[0]) / 2;
@@ -444,7 +464,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   const auto result = split.run([&](System& sys, double par) {
     if (par == w_lo / unit) return stickslip::SplitContinuation<System>::Guess{start.mode, start.t0, start.x0};
     part_cpu[static_cast<std::size_t>(&sys - systems.data())] = stickslip::detail::thread_cpu_seconds();
-    const auto orbit = blade_start_orbit(sys, par * unit, s.transient_periods, opt);
+    const auto orbit = blade_start_orbit(sys, par * unit, s.transient_periods, opt, s.period_multiple);
     return stickslip::SplitContinuation<System>::Guess{orbit.mode, orbit.t0, orbit.x0};
   });
   b.status = stickslip::to_string(result.branch.status);
@@ -525,14 +545,23 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   {
     std::ofstream o(out / "frc.csv");
     o << "preload_N,frequency_hz,tip_amplitude_m,tip_max_abs_m,stable,instability,max_multiplier,regime,stick_fraction_1,"
-         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s,segment\n";
+         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s,segment,period_T\n";
     for (const auto& b : branches)
       for (const auto& f : b.points)
         o << fmt(f.preload) << ',' << fmt(f.omega / (2 * M_PI)) << ',' << fmt(f.tip_amplitude) << ',' << fmt(f.tip_max_abs) << ','
           << (f.stable ? 1 : 0) << ',' << f.instability << ',' << fmt(f.max_multiplier) << ',' << f.regime << ','
           << fmt(f.stick_fraction[0]) << ',' << fmt(f.stick_fraction[1]) << ',' << fmt(f.switches_per_period[0])
           << ',' << fmt(f.switches_per_period[1]) << ',' << f.iterations << ',' << fmt(f.residual) << ','
-          << fmt(f.cpu_seconds) << ',' << f.segment << '\n';
+          << fmt(f.cpu_seconds) << ',' << f.segment << ',' << f.period << '\n';
+  }
+  {  // the restarts' frequencies without a periodic response: the tip amplitude per period
+    std::ofstream o(out / "frc_poincare.csv");
+    o << "preload_N,frequency_hz,period_index,tip_amplitude_m,smallest_recurrence\n";
+    for (const auto& b : branches)
+      for (const auto& np : b.not_periodic)
+        for (std::size_t n = 0; n < np.tip_amplitudes.size(); ++n)
+          o << fmt(b.preload) << ',' << fmt(np.frequency_hz) << ',' << n << ',' << fmt(np.tip_amplitudes[n]) << ','
+            << fmt(np.recurrence) << '\n';
   }
   {
     std::ofstream o(out / "frc_linear.csv");
@@ -558,6 +587,11 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
       << ", \"restarts\": " << b.restarts << ", \"separate_segment_points\": " << b.separate_points()
+      << ", \"not_periodic_hz\": " << list([&] {
+           std::vector<double> v;
+           for (const auto& np : b.not_periodic) v.push_back(np.frequency_hz);
+           return v;
+         }())
       << ", \"cpu_s\": " << jnum(b.cpu_seconds) << ", \"wall_s\": " << jnum(b.wall_seconds) << ", \"parts\": [";
     for (std::size_t q = 0; q < b.parts.size(); ++q)
       j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
@@ -572,13 +606,38 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   j << "\n  ]\n}\n";
 }
 
-/// FrcSettings::restarts: after a branch that stalled (step_too_small) short of f_hi, new
-/// segments (FrcPoint::segment = the next number), each a branch of its own (one part) from its
-/// own transient at restart_gap (x range) beyond the farthest frequency computed or tried so
-/// far (a start that fails moves the next one a gap further), until one completes or ends
-/// otherwise (max_points) or the restarts run out. The points in the gap are not computed;
-/// the segment after it may lie on another branch (e.g. past a fold, the orbit a slow sweep
-/// would jump to). b's status and message become those of the last segment.
+/// Observer of the tip's extremes per forcing period after t0 (period n: t in (t0 + nT, t0 + (n+1)T]).
+struct PeriodTipObserver : stickslip::NullObserver {
+  const BladeScene* scene = nullptr;
+  double t0 = 0, T = 1;
+  std::vector<double> lo, hi;
+  template <class X, class M>
+  bool on_step(double t, const X& x, const M&) {
+    const double tip = scene->tip_displacement(x);
+    const auto n = static_cast<std::size_t>(std::max(0.0, std::ceil((t - t0) / T - 1e-9) - 1));
+    if (n >= lo.size()) {
+      lo.resize(n + 1, tip);
+      hi.resize(n + 1, tip);
+    }
+    lo[n] = std::min(lo[n], tip);
+    hi[n] = std::max(hi[n], tip);
+    return true;
+  }
+  template <class X, class M>
+  bool on_sample(double t, const X& x, const M& m) { return on_step(t, x, m); }
+};
+
+/// FrcSettings::restarts: after a branch that stalled (step_too_small) short of f_hi, restarts
+/// at restart_gap (x range) beyond the farthest frequency computed or tried so far. Each first
+/// looks at the response: Poincaré sections (stickslip::poincare_sections) after a transient
+/// from rest of 3 x transient_periods periods, 32 sections, k <= 8, tolerance 1e-6. Period k:
+/// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits from
+/// its own transient and shooting (k > 1: subharmonic orbits, FrcPoint::period = k). No k: the
+/// tip's amplitude per recorded period goes to FrcBranch::not_periodic (quasi-periodic or
+/// chaotic response there) and the next restart tries one gap further. Until a segment
+/// completes or ends otherwise (max_points) or the restarts run out. The points in the gaps are
+/// not computed; a segment after a fold may lie on another branch (the orbit a slow sweep would
+/// jump to). b's status and message become those of the last attempt.
 inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
                          const std::function<void(const FrcPoint&)>& progress) {
   int segment = 0;
@@ -587,7 +646,8 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     segment = std::max(segment, f.segment);
     f_far = std::max(f_far, f.omega / (2 * M_PI));
   }
-  for (int r = 0; r < s.restarts && (b.status == "step_too_small" || (r > 0 && b.status == "start_failed")); ++r) {
+  bool again = b.status == "step_too_small";
+  for (int r = 0; r < s.restarts && again; ++r) {
     FrcSettings sr = s;
     sr.f_lo = f_far + s.restart_gap * (s.f_hi - s.f_lo);
     sr.parts = 1;
@@ -597,9 +657,60 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     sr.transient_periods = 3 * s.transient_periods;
     sr.max_newton_iterations = std::max(s.max_newton_iterations, 20);
     if (!(sr.f_lo < s.f_hi)) break;
-    std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its own transient)\n",
-                b.preload, sr.f_lo, b.status.c_str(), f_far, segment + 1);
-    f_far = sr.f_lo;  // a start that fails here makes the next restart try one gap further
+    f_far = sr.f_lo;  // a restart that finds no orbit here makes the next one try a gap further
+    ++b.restarts;
+    // The response at f_lo: period k, or none.
+    const double cpu0 = stickslip::detail::thread_cpu_seconds();
+    const auto wall0 = std::chrono::steady_clock::now();
+    BladeParameters q = scene.parameters;
+    q.force_omega = 2 * M_PI * sr.f_lo;
+    *scene.system = make_blade_system(scene, q);
+    scene.parameters = q;
+    const auto opt = blade_shooting_options(*scene.system, false);
+    stickslip::PoincareOptions<double> po;
+    po.transient_periods = sr.transient_periods;
+    po.record_periods = 32;
+    po.max_period = 8;
+    po.periodic = opt.periodic;
+    po.stepper = opt.stepper;
+    BladeScene::System::State x0 = scene.system->initial_state();
+    BladeScene::System::Mode mode = scene.system->requested_mode();
+    if (!scene.system->make_consistent(mode, 0.0, x0)) throw std::runtime_error("frc: no consistent start state at rest");
+    PeriodTipObserver tips;
+    tips.scene = &scene;
+    tips.T = 2 * M_PI / q.force_omega;
+    tips.t0 = po.transient_periods * tips.T;
+    const auto sections = stickslip::poincare_sections(*scene.system, mode, 0.0, x0, tips.T, po, tips);
+    b.cpu_seconds += stickslip::detail::thread_cpu_seconds() - cpu0;
+    b.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    if (!sections.periodic()) {
+      FrcPoincare np;
+      np.frequency_hz = sr.f_lo;
+      for (std::size_t n = 0; n < tips.lo.size(); ++n) np.tip_amplitudes.push_back((tips.hi[n] - tips.lo[n]) / 2);
+      np.recurrence = sections.recurrence.empty() ? 0.0 : *std::min_element(sections.recurrence.begin(), sections.recurrence.end());
+      const auto [lo, hi] = std::minmax_element(np.tip_amplitudes.begin(), np.tip_amplitudes.end());
+      std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz: %s (no period <= 8 T in 32 sections, "
+                  "smallest recurrence %.1e: quasi-periodic or chaotic), tip %.4e..%.4e m per period\n",
+                  b.preload, sr.f_lo, b.status.c_str(), f_far - s.restart_gap * (s.f_hi - s.f_lo),
+                  stickslip::to_string(sections.status), np.recurrence, np.tip_amplitudes.empty() ? 0.0 : *lo,
+                  np.tip_amplitudes.empty() ? 0.0 : *hi);
+      std::fflush(stdout);
+      b.not_periodic.push_back(std::move(np));
+      if (sections.status == stickslip::PoincareStatus::IntegrationFailed) {
+        b.status = "start_failed";
+        b.message = "restart at " + std::to_string(sr.f_lo) + " Hz: " + sections.message;
+      }
+      continue;
+    }
+    sr.period_multiple = sections.period;
+    // A subharmonic branch costs k times a period-1 one per run and lives in narrow windows (1 N:
+    // period 8 T at 33.42 Hz, Neimark-Sacker after 0.01 Hz, then crawling at ~3 s per point):
+    // a short stretch shows where it is.
+    if (sections.period > 1) sr.max_points = std::min(sr.max_points, 12);
+    std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its own transient; "
+                "the response repeats every %d T)\n",
+                b.preload, sr.f_lo, b.status.c_str(), f_far - s.restart_gap * (s.f_hi - s.f_lo), segment + 1,
+                sections.period);
     std::fflush(stdout);
     const FrcBranch next = frc_branch(scene, sr, frc_state_scale(scene, sr), [&](const FrcPoint& f) {
       FrcPoint g = f;
@@ -616,7 +727,8 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     b.message = next.message;
     b.cpu_seconds += next.cpu_seconds;
     b.wall_seconds += next.wall_seconds;
-    ++b.restarts;
+    again = next.status == "step_too_small" || next.status == "start_failed" ||
+            (sr.period_multiple > 1 && next.status == "max_points");  // (its short stretch ended)
   }
 }
 
@@ -646,10 +758,11 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
                 stuck_hz.empty() ? 0.0 : stuck_hz[0], free_hz.empty() ? 0.0 : free_hz[0]);
     int count = 0;
     const auto progress = [&](const FrcPoint& f) {
-      std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s\n", n0,
+      std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s%s\n", n0,
                   ++count, f.omega / (2 * M_PI), f.tip_amplitude,
                   f.stable ? "stable" : f.instability.c_str(), f.regime.c_str(), f.stick_fraction[0],
-                  f.stick_fraction[1], f.iterations, f.cpu_seconds);
+                  f.stick_fraction[1], f.iterations, f.cpu_seconds,
+                  f.period > 1 ? ("  period " + std::to_string(f.period) + " T").c_str() : "");
       std::fflush(stdout);
     };
     auto b = frc_branch(sc, s, frc_state_scale(sc, s), progress);

@@ -106,9 +106,13 @@ Usage: blade_damper [options]
                          threads, at most 4; 1: one Continuation); a part the
                          branch never reached is written as a separate segment
   --frc-restarts n       (after --frc) after a branch stalls short of f_hi (a
-                         nonsmooth point), start a new segment from its own
-                         transient 1 % of the range beyond it, at most n times
-                         (default 3; 0: none)
+                         nonsmooth point, or where the period-1 orbit turns
+                         unstable), look 1 % of the range beyond it: Poincare
+                         sections of a transient; period k T: a new segment of
+                         period-k T orbits (k > 1: subharmonic) from there; none:
+                         the tip amplitude per period (OUT/frc_poincare.csv) and
+                         the next try a gap further; at most n tries (default 8;
+                         0: none)
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)

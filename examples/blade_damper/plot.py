@@ -243,6 +243,22 @@ def plot_frc(out):
             ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4 if segment[i] == 0 else 1.0,
                         ls="-" if stable[i] and stable[i + 1] else "--", label=label)
         ax.scatter(f, a, s=9, zorder=3, c=[colour[r["regime"]] for r in pts])
+        # subharmonic orbits (period k T, k > 1, found by a restart): ringed
+        sub = [i for i, r in enumerate(pts) if int(r.get("period_T", "1") or 1) > 1]
+        if sub:
+            ks = sorted({int(pts[i]["period_T"]) for i in sub})
+            ax.scatter([f[i] for i in sub], [a[i] for i in sub], s=30, zorder=4, facecolors="none",
+                       edgecolors=line, label=f"N0 = {n0:g} N, subharmonic orbits (period "
+                                              + ", ".join(f"{k} T" for k in ks) + ")")
+    # the restarts' frequencies without a periodic response: tip amplitude in each recorded period
+    poinc = os.path.join(out, "frc_poincare.csv")
+    if os.path.exists(poinc):
+        with open(poinc, newline="") as fh:
+            prow = list(csv.DictReader(fh))
+        if prow:
+            ax.scatter([float(r["frequency_hz"]) for r in prow], [float(r["tip_amplitude_m"]) for r in prow],
+                       s=4, color="0.4", zorder=2,
+                       label="not periodic (<= 8 T): tip amplitude per period of a transient")
     for g in regimes:
         ax.scatter([], [], s=12, color=colour[g], label=f"regime: {g}")
     ax.set_xlabel("excitation frequency [Hz]")

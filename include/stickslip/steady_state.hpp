@@ -8,6 +8,7 @@
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
 #include "stickslip/steady_state/period_run.hpp"
+#include "stickslip/steady_state/poincare.hpp"
 #include "stickslip/steady_state/shooting.hpp"
 #include "stickslip/steady_state/shooting_options.hpp"
 #include "stickslip/steady_state/split_continuation.hpp"

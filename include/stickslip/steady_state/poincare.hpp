@@ -1,0 +1,162 @@
+#pragma once
+/// \file poincare.hpp
+/// \brief Poincaré sections of a forced response: the state at t0 + nT after a transient, and the
+/// smallest k for which the sections repeat (a period-k response), or none (quasi-periodic or
+/// chaotic). The brute-force view of a steady state where shooting a period-1 orbit fails.
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/dormand_prince54.hpp>
+#include <stickslip/ode/hybrid_stepper.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+/// Options of poincare_sections.
+template <class Scalar>
+struct PoincareOptions {
+  int transient_periods = 100;  ///< whole forcing periods integrated before the first section
+  int record_periods = 32;      ///< sections recorded after the transient (>= 2 max_period)
+  int max_period = 8;           ///< largest k looked for
+  /// The sections repeat with period k when max_n |x_P(n) - x_P(n - k)| over the record is at
+  /// most tolerance times max_n |x_P(n)| (infinity norms over the components `periodic`).
+  Scalar tolerance = Scalar(1e-6);
+  /// Components compared (e.g. the mechanical states; quadratures grow); empty: all.
+  std::vector<Eigen::Index> periodic;
+  /// Options of the runs (HybridStepper with DormandPrince54).
+  StepperOptions<Scalar> stepper{};
+
+  /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range,
+  /// for state size n.
+  void validate(const std::string& where, Eigen::Index n) const {
+    stepper.validate(where);
+    if (transient_periods < 0)
+      detail::throw_invalid(where, "options.transient_periods must be >= 0", transient_periods);
+    if (max_period < 1) detail::throw_invalid(where, "options.max_period must be >= 1", max_period);
+    if (record_periods < 2 * max_period)
+      detail::throw_invalid(where, "options.record_periods must be >= 2 options.max_period",
+                            record_periods);
+    detail::require_positive(where, "options.tolerance", tolerance);
+    for (Eigen::Index i : periodic)
+      if (i < 0 || i >= n)
+        detail::throw_invalid(where, "options.periodic: index out of [0, " + std::to_string(n) + ")",
+                              i);
+  }
+};
+
+/// How poincare_sections ended.
+enum class PoincareStatus : std::uint8_t {
+  Periodic,          ///< the sections repeat with period k = period (k = 1: a period-1 response)
+  NotPeriodic,       ///< no k <= max_period: quasi-periodic, chaotic, or still transient
+  IntegrationFailed  ///< a run failed (message says where)
+};
+
+/// Human-readable name of a Poincaré status.
+inline const char* to_string(PoincareStatus s) noexcept {
+  switch (s) {
+    case PoincareStatus::Periodic: return "periodic";
+    case PoincareStatus::NotPeriodic: return "not_periodic";
+    case PoincareStatus::IntegrationFailed: return "integration_failed";
+  }
+  return "unknown";
+}
+
+/// The record of poincare_sections.
+template <class System>
+struct PoincareSections {
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  PoincareStatus status = PoincareStatus::NotPeriodic;  ///< how it ended
+  std::string message;                 ///< why a run failed (empty otherwise)
+  int period = 0;                      ///< k when Periodic, else 0
+  /// Per k = 1 .. max_period: max_n |x_P(n) - x_P(n - k)| / max_n |x_P(n)| over the record.
+  std::vector<Scalar> recurrence;
+  Scalar t0 = 0;                       ///< time of the first section (t0 of the call + transient)
+  Scalar period_time = 0;              ///< the forcing period T
+  std::vector<typename System::State> states;  ///< the sections x(t0 + nT), n = 0 .. record - 1
+  std::vector<typename System::Mode> modes;    ///< the mode at each section
+  /// status == Periodic.
+  bool periodic() const noexcept { return status == PoincareStatus::Periodic; }
+};
+
+/// Poincaré sections of the response of `system` from (mode, t0, x0) under forcing of period T:
+/// integrates options.transient_periods periods, then records the state at the next
+/// options.record_periods multiples of T and reports the smallest k <= max_period with
+///
+///     max_n |x_P(n) - x_P(n - k)|_inf <= tolerance max_n |x_P(n)|_inf   (n over the record),
+///
+/// i.e. a period-k response to the tolerance (a subharmonic of order k for k > 1), or
+/// NotPeriodic. `observer` sees the recorded periods only (steps, events, samples), e.g. to take
+/// the amplitude per period. A period-k section state is a good guess for Shooting::forced with
+/// period k T. Throws std::invalid_argument for T <= 0, non-finite input or bad options.
+template <class System, class Observer = NullObserver>
+PoincareSections<System> poincare_sections(System& system, const typename System::Mode& mode,
+                                           typename System::Scalar t0,
+                                           const typename System::State& x0,
+                                           typename System::Scalar T,
+                                           const PoincareOptions<typename System::Scalar>& options,
+                                           Observer&& observer = Observer{}) {
+  using Scalar = typename System::Scalar;
+  static const std::string where = "poincare_sections";
+  detail::require_finite(where, "t0", t0);
+  detail::require_positive(where, "T", T);
+  if (!detail::all_finite(x0)) detail::throw_invalid(where, "x0 must be finite", Scalar(0));
+  options.validate(where, x0.size());
+  std::vector<Eigen::Index> P = options.periodic;
+  if (P.empty())
+    for (Eigen::Index i = 0; i < x0.size(); ++i) P.push_back(i);
+
+  PoincareSections<System> out;
+  out.period_time = T;
+  HybridStepper<System, DormandPrince54> stepper(system, options.stepper);
+  typename System::Mode m = mode;
+  typename System::State x = x0;
+  Scalar t = t0;
+  // Period by period (a section at each whole period, as a sampled run would only approach it).
+  auto run = [&](auto& obs) {
+    const auto r = stepper.integrate(m, t, x, t + T, obs);
+    if (!r.ok()) {
+      out.status = PoincareStatus::IntegrationFailed;
+      out.message = "the run over [" + detail::format_value(t) + ", " + detail::format_value(t + T) +
+                    "] failed: " + r.message;
+      return false;
+    }
+    t += T;
+    x = r.x;
+    m = r.mode;
+    return true;
+  };
+  NullObserver quiet;
+  for (int n = 0; n < options.transient_periods; ++n)
+    if (!run(quiet)) return out;
+  out.t0 = t;
+  out.states.reserve(static_cast<std::size_t>(options.record_periods));
+  for (int n = 0; n < options.record_periods; ++n) {
+    out.states.push_back(x);
+    out.modes.push_back(m);
+    if (n + 1 < options.record_periods && !run(observer)) return out;
+  }
+  Scalar scale = 0;
+  for (const auto& s : out.states)
+    for (Eigen::Index i : P) scale = std::max(scale, std::abs(s[i]));
+  if (!(scale > 0)) scale = Scalar(1);  // the rest state: every k repeats it
+  const auto N = out.states.size();
+  for (int k = 1; k <= options.max_period; ++k) {
+    Scalar worst = 0;
+    for (std::size_t n = static_cast<std::size_t>(k); n < N; ++n)
+      for (Eigen::Index i : P)
+        worst = std::max(worst, std::abs(out.states[n][i] - out.states[n - static_cast<std::size_t>(k)][i]));
+    out.recurrence.push_back(worst / scale);
+    if (out.period == 0 && worst <= options.tolerance * scale) out.period = k;
+  }
+  out.status = out.period > 0 ? PoincareStatus::Periodic : PoincareStatus::NotPeriodic;
+  return out;
+}
+
+}  // namespace stickslip
