@@ -307,17 +307,24 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
   return opt;
 }
 
+/// The system's consistent state and mode at rest (the start of every transient here).
+inline void blade_rest_start(BladeScene::System& sys, BladeScene::System::Mode& mode, BladeScene::System::State& x) {
+  x = sys.initial_state();
+  mode = sys.requested_mode();
+  if (!sys.make_consistent(mode, 0.0, x)) throw std::runtime_error("frc: no consistent start state at rest");
+}
+
 /// A start orbit of the system at the excitation frequency `force_omega` [rad/s] (the system's
 /// own): the end of a transient from rest of `periods` (whole) excitation periods as the guess,
-/// then shooting from t0 = 0. Returns the orbit (check ok()).
+/// then shooting from t0 = 0 with period period_multiple T. Returns the orbit (check ok()).
 inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene::System& sys, double force_omega,
                                                                       int periods,
                                                                       const stickslip::ShootingOptions<double>& opt,
                                                                       int period_multiple = 1) {
   const double T = 2 * M_PI / force_omega;
-  BladeScene::System::State x0 = sys.initial_state();
-  BladeScene::System::Mode mode = sys.requested_mode();
-  if (!sys.make_consistent(mode, 0.0, x0)) throw std::runtime_error("frc: no consistent start state at rest");
+  BladeScene::System::State x0;
+  BladeScene::System::Mode mode;
+  blade_rest_start(sys, mode, x0);
   stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(sys, opt.stepper);
   const auto transient = stepper.integrate(mode, 0.0, x0, static_cast<double>(periods) * T);
   stickslip::Shooting<BladeScene::System> shooting(sys, opt);
@@ -336,9 +343,12 @@ inline stickslip::PeriodicOrbit<BladeScene::System> blade_start_orbit(BladeScene
 /// One frequency-response branch of `scene` at its preload over [f_lo, f_hi] (Hz), from the
 /// orbit at f_lo. The continuation parameter is omega / u with u = (omega_hi - omega_lo) / 4 S,
 /// S the largest |(q, q')| of the linear limits over the range, so that the parameter and the
-/// states weigh alike in the arclength norm. `progress` is called per point.
+/// states weigh alike in the arclength norm. `progress` is called per point. With `settled`
+/// (a restart's Poincaré sections at f_lo, whole periods after t = 0) the start orbit is shot
+/// from its last section instead of a transient of its own.
 inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double state_scale,
-                            const std::function<void(const FrcPoint&)>& progress) {
+                            const std::function<void(const FrcPoint&)>& progress,
+                            const stickslip::PoincareSections<BladeScene::System>* settled = nullptr) {
   using System = BladeScene::System;
   FrcBranch b;
   b.preload = scene.parameters.preload;
@@ -358,10 +368,15 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
-  auto start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
+  auto start_orbit = [&] {
+    if (!settled) return blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
+    stickslip::Shooting<System> shooting(*scene.system, opt);
+    return shooting.forced(settled->modes.back(), 0.0, settled->states.back(), s.period_multiple * 2 * M_PI / w_lo);
+  };
+  auto start = start_orbit();
   if (opt.monodromy == stickslip::MonodromyMethod::FiniteDifference && (!start.ok() || start.events.empty())) {
     opt.monodromy = stickslip::MonodromyMethod::Variational;
-    start = blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
+    start = start_orbit();
   }
   b.monodromy = stickslip::to_string(opt.monodromy);
   if (!start.ok()) {
@@ -398,11 +413,11 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   const int k_T = s.period_multiple;
   auto period_of = [unit, k_T](double par) { return k_T * 2 * M_PI / (par * unit); };
   // One point of the curve from an orbit of the branch on `sys` (its tip range is one more run).
-  auto make_point = [&scene, &opt, &b, unit](System& sys, const stickslip::ContinuationPoint<System>& pt,
-                                             double& cpu_mark) {
+  auto make_point = [&scene, &opt, &b, unit, k_T](System& sys, const stickslip::ContinuationPoint<System>& pt,
+                                                  double& cpu_mark) {
     FrcPoint f;
     f.preload = b.preload;
-    f.period = static_cast<int>(std::lround(pt.orbit.period * pt.parameter * unit / (2 * M_PI)));
+    f.period = k_T;
     f.omega = pt.parameter * unit;
     const auto range = orbit_tip_range(scene, sys, pt.orbit, opt);
     f.tip_amplitude = (range[1] - range[0]) / 2;
@@ -631,8 +646,8 @@ struct PeriodTipObserver : stickslip::NullObserver {
 /// at restart_gap (x range) beyond the farthest frequency computed or tried so far. Each first
 /// looks at the response: Poincaré sections (stickslip::poincare_sections) after a transient
 /// from rest of 3 x transient_periods periods, 32 sections, k <= 8, tolerance 1e-6. Period k:
-/// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits from
-/// its own transient and shooting (k > 1: subharmonic orbits, FrcPoint::period = k). No k: the
+/// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits shot
+/// from the last section (k > 1: subharmonic orbits, FrcPoint::period = k). No k: the
 /// tip's amplitude per recorded period goes to FrcBranch::not_periodic (quasi-periodic or
 /// chaotic response there) and the next restart tries one gap further. Until a segment
 /// completes or ends otherwise (max_points) or the restarts run out. The points in the gaps are
@@ -657,6 +672,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     sr.transient_periods = 3 * s.transient_periods;
     sr.max_newton_iterations = std::max(s.max_newton_iterations, 20);
     if (!(sr.f_lo < s.f_hi)) break;
+    const double f_prev = f_far;
     f_far = sr.f_lo;  // a restart that finds no orbit here makes the next one try a gap further
     ++b.restarts;
     // The response at f_lo: period k, or none.
@@ -673,9 +689,9 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     po.max_period = 8;
     po.periodic = opt.periodic;
     po.stepper = opt.stepper;
-    BladeScene::System::State x0 = scene.system->initial_state();
-    BladeScene::System::Mode mode = scene.system->requested_mode();
-    if (!scene.system->make_consistent(mode, 0.0, x0)) throw std::runtime_error("frc: no consistent start state at rest");
+    BladeScene::System::State x0;
+    BladeScene::System::Mode mode;
+    blade_rest_start(*scene.system, mode, x0);
     PeriodTipObserver tips;
     tips.scene = &scene;
     tips.T = 2 * M_PI / q.force_omega;
@@ -691,8 +707,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
       const auto [lo, hi] = std::minmax_element(np.tip_amplitudes.begin(), np.tip_amplitudes.end());
       std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz: %s (no period <= 8 T in 32 sections, "
                   "smallest recurrence %.1e: quasi-periodic or chaotic), tip %.4e..%.4e m per period\n",
-                  b.preload, sr.f_lo, b.status.c_str(), f_far - s.restart_gap * (s.f_hi - s.f_lo),
-                  stickslip::to_string(sections.status), np.recurrence, np.tip_amplitudes.empty() ? 0.0 : *lo,
+                  b.preload, sr.f_lo, b.status.c_str(), f_prev, stickslip::to_string(sections.status), np.recurrence, np.tip_amplitudes.empty() ? 0.0 : *lo,
                   np.tip_amplitudes.empty() ? 0.0 : *hi);
       std::fflush(stdout);
       b.not_periodic.push_back(std::move(np));
@@ -707,16 +722,15 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     // period 8 T at 33.42 Hz, Neimark-Sacker after 0.01 Hz, then crawling at ~3 s per point):
     // a short stretch shows where it is.
     if (sections.period > 1) sr.max_points = std::min(sr.max_points, 12);
-    std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its own transient; "
-                "the response repeats every %d T)\n",
-                b.preload, sr.f_lo, b.status.c_str(), f_far - s.restart_gap * (s.f_hi - s.f_lo), segment + 1,
-                sections.period);
+    std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its transient's "
+                "sections: the response repeats every %d T)\n",
+                b.preload, sr.f_lo, b.status.c_str(), f_prev, segment + 1, sections.period);
     std::fflush(stdout);
     const FrcBranch next = frc_branch(scene, sr, frc_state_scale(scene, sr), [&](const FrcPoint& f) {
       FrcPoint g = f;
       g.segment = segment + 1;
       if (progress) progress(g);
-    });
+    }, &sections);
     if (!next.points.empty()) ++segment;
     for (FrcPoint f : next.points) {
       f.segment = segment;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 /// Internal invariant check (not for caller errors, which throw). Active unless NDEBUG.
 #define STICKSLIP_ASSERT(cond) assert(cond)
@@ -69,6 +70,19 @@ void require_non_negative(const std::string& where, const char* name, Scalar val
   using std::isfinite;
   if (!(isfinite(value) && value >= Scalar(0)))
     throw_invalid(where, std::string(name) + " must be finite and >= 0", value);
+}
+
+/// Require indices of a state of size n: each in [0, n) and none repeated
+/// ("<where>: <name>: index out of [0, n) (got i)" / "index repeated").
+inline void require_indices(const std::string& where, const char* name,
+                            const std::vector<Eigen::Index>& v, Eigen::Index n) {
+  std::vector<bool> seen(static_cast<std::size_t>(n > 0 ? n : 0), false);
+  for (Eigen::Index i : v) {
+    if (i < 0 || i >= n)
+      throw_invalid(where, std::string(name) + ": index out of [0, " + std::to_string(n) + ")", i);
+    if (seen[static_cast<std::size_t>(i)]) throw_invalid(where, std::string(name) + ": index repeated", i);
+    seen[static_cast<std::size_t>(i)] = true;
+  }
 }
 
 }  // namespace detail

@@ -7,12 +7,14 @@
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/dormand_prince54.hpp>
 #include <stickslip/ode/hybrid_stepper.hpp>
+#include <stickslip/steady_state/shooting_options.hpp>
 
 #include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -43,10 +45,7 @@ struct PoincareOptions {
       detail::throw_invalid(where, "options.record_periods must be >= 2 options.max_period",
                             record_periods);
     detail::require_positive(where, "options.tolerance", tolerance);
-    for (Eigen::Index i : periodic)
-      if (i < 0 || i >= n)
-        detail::throw_invalid(where, "options.periodic: index out of [0, " + std::to_string(n) + ")",
-                              i);
+    detail::require_indices(where, "options.periodic", periodic, n);
   }
 };
 
@@ -94,7 +93,7 @@ struct PoincareSections {
 /// i.e. a period-k response to the tolerance (a subharmonic of order k for k > 1), or
 /// NotPeriodic. `observer` sees the recorded periods only (steps, events, samples), e.g. to take
 /// the amplitude per period. A period-k section state is a good guess for Shooting::forced with
-/// period k T. Throws std::invalid_argument for T <= 0, non-finite input or bad options.
+/// period k T. Throws std::invalid_argument for T <= 0, empty or non-finite input or bad options.
 template <class System, class Observer = NullObserver>
 PoincareSections<System> poincare_sections(System& system, const typename System::Mode& mode,
                                            typename System::Scalar t0,
@@ -106,11 +105,11 @@ PoincareSections<System> poincare_sections(System& system, const typename System
   static const std::string where = "poincare_sections";
   detail::require_finite(where, "t0", t0);
   detail::require_positive(where, "T", T);
-  if (!detail::all_finite(x0)) detail::throw_invalid(where, "x0 must be finite", Scalar(0));
+  if (x0.size() == 0) throw std::invalid_argument(where + ": x0 must not be empty");
+  if (!detail::all_finite(x0)) throw std::invalid_argument(where + ": x0 must be finite");
   options.validate(where, x0.size());
   std::vector<Eigen::Index> P = options.periodic;
-  if (P.empty())
-    for (Eigen::Index i = 0; i < x0.size(); ++i) P.push_back(i);
+  if (P.empty()) P = ShootingOptions<Scalar>::first(x0.size());
 
   PoincareSections<System> out;
   out.period_time = T;
@@ -142,16 +141,16 @@ PoincareSections<System> poincare_sections(System& system, const typename System
     out.modes.push_back(m);
     if (n + 1 < options.record_periods && !run(observer)) return out;
   }
+  // Infinity norms over the compared components (Eigen's indexed view x(P)).
   Scalar scale = 0;
-  for (const auto& s : out.states)
-    for (Eigen::Index i : P) scale = std::max(scale, std::abs(s[i]));
+  for (const auto& s : out.states) scale = std::max(scale, s(P).cwiseAbs().maxCoeff());
   if (!(scale > 0)) scale = Scalar(1);  // the rest state: every k repeats it
   const auto N = out.states.size();
   for (int k = 1; k <= options.max_period; ++k) {
+    const auto K = static_cast<std::size_t>(k);
     Scalar worst = 0;
-    for (std::size_t n = static_cast<std::size_t>(k); n < N; ++n)
-      for (Eigen::Index i : P)
-        worst = std::max(worst, std::abs(out.states[n][i] - out.states[n - static_cast<std::size_t>(k)][i]));
+    for (std::size_t n = K; n < N; ++n)
+      worst = std::max(worst, (out.states[n](P) - out.states[n - K](P)).cwiseAbs().maxCoeff());
     out.recurrence.push_back(worst / scale);
     if (out.period == 0 && worst <= options.tolerance * scale) out.period = k;
   }

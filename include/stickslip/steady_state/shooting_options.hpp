@@ -86,8 +86,8 @@ struct ShootingOptions {
     if (samples_per_period < 0)
       detail::throw_invalid(where, "options.samples_per_period must be >= 0", samples_per_period);
     detail::require_non_negative(where, "options.multiplier_tolerance", multiplier_tolerance);
-    check_indices(where, "options.periodic", periodic, n);
-    check_indices(where, "options.amplitude_components", amplitude_components, n);
+    detail::require_indices(where, "options.periodic", periodic, n);
+    detail::require_indices(where, "options.amplitude_components", amplitude_components, n);
   }
 
   /// The periodic indices in use for state size n (all when `periodic` is empty).
@@ -99,19 +99,6 @@ struct ShootingOptions {
     return amplitude_components.empty() ? periodic_indices(n) : amplitude_components;
   }
 
- private:
-  static void check_indices(const std::string& where, const char* name,
-                            const std::vector<Eigen::Index>& v, Eigen::Index n) {
-    std::vector<bool> seen(static_cast<std::size_t>(n > 0 ? n : 0), false);
-    for (Eigen::Index i : v) {
-      if (i < 0 || i >= n)
-        detail::throw_invalid(where, std::string(name) + ": index out of [0, " +
-                                         std::to_string(n) + ")", i);
-      if (seen[static_cast<std::size_t>(i)])
-        detail::throw_invalid(where, std::string(name) + ": index repeated", i);
-      seen[static_cast<std::size_t>(i)] = true;
-    }
-  }
 };
 
 }  // namespace stickslip
