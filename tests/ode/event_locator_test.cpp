@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "ode/ode_test_systems.hpp"
@@ -48,6 +50,74 @@ TEST(IllinoisRoot, ClosesTheBracketAroundTheRootOfACubic) {
   EXPECT_LT(phi(br.hi), 0.0);
   // Superlinear: far fewer evaluations than the 44 halvings of bisection to 1e-13.
   EXPECT_LT(br.evaluations, 15);
+}
+
+// newton_root on the same cubic with its exact slope: the same bracket contract, in far fewer
+// evaluations than Illinois (quadratic convergence from the Hermite start, then one point to
+// close the bracket). The bound 6 leaves room for two Newton steps beyond the usual three.
+TEST(NewtonRoot, ClosesTheBracketAroundTheRootOfACubicInFewerEvaluationsThanIllinois) {
+  const double root = 2.0945514815423265;
+  auto f = [](double t) { return -(t * t * t - 2.0 * t - 5.0); };
+  auto fs = [](double t, double& slope) {
+    slope = -(3.0 * t * t - 2.0);
+    return -(t * t * t - 2.0 * t - 5.0);
+  };
+  const auto illinois = stickslip::detail::illinois_root(f, 2.0, f(2.0), 3.0, f(3.0), 1e-13);
+  for (bool end_slopes : {true, false}) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double slo = end_slopes ? -(3.0 * 4.0 - 2.0) : nan;
+    const double shi = end_slopes ? -(3.0 * 9.0 - 2.0) : nan;
+    const auto br = stickslip::detail::newton_root(fs, 2.0, f(2.0), slo, 3.0, f(3.0), shi, 1e-13);
+    EXPECT_LE(br.hi - br.lo, 1e-13);
+    EXPECT_LE(br.lo, root + 1e-15);
+    EXPECT_GE(br.hi, root - 1e-15);
+    EXPECT_GE(f(br.lo), 0.0);
+    EXPECT_LT(f(br.hi), 0.0);
+    EXPECT_LE(br.evaluations, 6) << "end slopes " << end_slopes;
+    EXPECT_LT(br.evaluations, illinois.evaluations) << "end slopes " << end_slopes;
+  }
+}
+
+// The slope only steers: with a slope of the wrong sign, none at all (NaN), or at a triple root
+// (phi = -(t - r)^3, where Newton converges only linearly and |phi| falls by 8/27 per step) the
+// iteration falls back to bisection and still closes a valid bracket.
+TEST(NewtonRoot, BadSlopesAndATripleRootStillCloseAValidBracket) {
+  const double r = 0.3141592653589793;
+  struct Case {
+    const char* name;
+    double (*value)(double);
+    double (*slope)(double);
+  };
+  const Case cases[] = {
+      {"wrong sign", [](double t) { return std::cos(t) - 0.2; },
+       [](double t) { return std::sin(t); }},
+      {"no slope", [](double t) { return std::cos(t) - 0.2; },
+       [](double) { return std::numeric_limits<double>::quiet_NaN(); }},
+      {"triple root", [](double t) { return -std::pow(t - 0.3141592653589793, 3); },
+       [](double t) { return -3.0 * std::pow(t - 0.3141592653589793, 2); }},
+  };
+  for (const Case& c : cases) {
+    auto fs = [&](double t, double& s) {
+      s = c.slope(t);
+      return c.value(t);
+    };
+    const double lo = c.value(0.0) > 0 && c.value(2.0) < 0 ? 0.0 : -1.0;
+    const double hi = 2.0;
+    ASSERT_GE(c.value(lo), 0.0) << c.name;
+    ASSERT_LT(c.value(hi), 0.0) << c.name;
+    const auto br = stickslip::detail::newton_root(fs, lo, c.value(lo), c.slope(lo), hi,
+                                                   c.value(hi), c.slope(hi), 1e-12);
+    EXPECT_LE(br.hi - br.lo, 1e-12) << c.name;
+    EXPECT_GE(c.value(br.lo), 0.0) << c.name;
+    EXPECT_LT(c.value(br.hi), 0.0) << c.name;
+    // Bisection alone takes ceil(log2(3 / 1e-12)) = 42 evaluations; where Newton is rejected
+    // every second evaluation bisects, so at most about twice that (the triple root: 63).
+    EXPECT_LE(br.evaluations, 2 * 42 + 4) << c.name;
+    const double expected = std::string(c.name) == "triple root" ? r : std::acos(0.2);
+    // The bracket holds the root: t - r is exact near r (Sterbenz), so the cube's sign is exact;
+    // cos is within an ulp, i.e. ~1e-16 in t at slope ~1.
+    EXPECT_NEAR(0.5 * (br.lo + br.hi), expected, 1e-12) << c.name;
+  }
 }
 
 TEST(EventSemantics, EventExactlyOnAStepBoundaryIsReportedOnceJustAfterIt) {

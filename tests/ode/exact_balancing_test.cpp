@@ -1,5 +1,6 @@
 // AugmentedFlow (internal to ExactLinearStepper): exponentials of a badly scaled generator by
-// balancing, exp(A tau) = D exp(B tau) D^-1, against the closed form of a damped oscillator.
+// balancing, exp(A tau) = D exp(B tau) D^-1, against the closed form of a damped oscillator;
+// short hops of either sign on it; a nilpotent generator against its polynomial.
 
 #include <stickslip/ode/detail/augmented_flow.hpp>
 
@@ -88,6 +89,61 @@ TEST(AugmentedFlowBalancing, VanLoanBlockOfABadlyScaledOscillatorMatchesTheClose
     const Eigen::Matrix2d ref = damped_oscillator_exp(w, z, tau);
     const Eigen::Matrix2d got = phi.topLeftCorner(2, 2);
     EXPECT_LT((scale * (got - ref) * scale.inverse()).cwiseAbs().maxCoeff(), 1e-13) << "tau " << tau;
+  }
+}
+
+// Short hops of either sign (the points of a root search, moved from one to the next): the same
+// closed form to 1e-13 in the oscillator's scale (one Taylor series on ||B dt|| <= 1/2: a few
+// ulps per term, as the test above); a hop longer than that is refused and leaves v as it was.
+TEST(AugmentedFlowHop, ShortHopsEitherWayMatchTheClosedFormAndLongOnesAreRefused) {
+  const double w = 2 * 3.14159265358979323846 * 2561, z = 0.01;
+  const stickslip::LinearPart<double> lp = oscillator_part(w, z);
+  stickslip::detail::AugmentedFlow<double> flow;
+  stickslip::ExactStepperStats st;
+  flow.assign(lp, 2, st);
+  const Eigen::Matrix2d scale = Eigen::Vector2d(w, 1.0).asDiagonal();
+  Eigen::VectorXd v(3);
+  v << 1e-3, 2.0, 1.0;
+  const double short_hop = 0.4 / w;  // ||B||_1 is of the order of w after balancing
+  for (double dt : {short_hop, -short_hop, 1e-3 * short_hop, -1e-9 * short_hop}) {
+    Eigen::VectorXd u = v;
+    ASSERT_TRUE(flow.hop(dt, u, st)) << "dt " << dt;
+    const Eigen::Vector2d vref = damped_oscillator_exp(w, z, dt) * v.head<2>();
+    EXPECT_LT((scale * (u.head<2>() - vref)).cwiseAbs().maxCoeff(),
+              1e-13 * (scale * v.head<2>()).cwiseAbs().maxCoeff())
+        << "dt " << dt;
+  }
+  Eigen::VectorXd u = v;
+  EXPECT_FALSE(flow.hop(100.0 / w, u, st));
+  EXPECT_EQ(u, v);
+}
+
+// A stick phase without forcing (x' = v, v' = a: Â nilpotent, Â^3 = 0) has no rate and so no
+// ladder; its exponential is the polynomial x0 + v0 t + a t^2 / 2 for any t. expv sums it at once
+// (3 products: the third term is exactly zero) instead of ceil(||B|| t) Taylor sub-steps, and the
+// values are the polynomial's to round-off (1e-15 relative: a handful of operations).
+TEST(AugmentedFlowNilpotent, ForceFreeStickPhaseIsOneExactSumAtAnyLength) {
+  stickslip::LinearPart<double> lp;
+  lp.A.resize(2, 2);
+  lp.A << 0, 1, 0, 0;
+  lp.b0.resize(2);
+  lp.b0 << 0, -0.3;
+  lp.version = 1;
+  stickslip::detail::AugmentedFlow<double> flow;
+  stickslip::ExactStepperStats st;
+  flow.assign(lp, 2, st);
+  flow.prepare(0.0, st);  // no rate: no ladder (as the stepper does for such a mode)
+  ASSERT_FALSE(flow.has_ladder());
+  for (double t : {0.25, 3.0, 1e4}) {
+    Eigen::VectorXd u(3);
+    u << 0.5, 0.1, 1.0;
+    const long before = st.matvecs;
+    flow.expv(t, u, st);
+    EXPECT_LE(st.matvecs - before, 3) << "t " << t;
+    const double x = 0.5 + 0.1 * t - 0.15 * t * t, v = 0.1 - 0.3 * t;
+    EXPECT_NEAR(u[0], x, 1e-15 * (0.5 + 0.1 * t + 0.15 * t * t)) << "t " << t;
+    EXPECT_NEAR(u[1], v, 1e-15 * (0.1 + 0.3 * t)) << "t " << t;
+    EXPECT_EQ(u[2], 1.0);
   }
 }
 

@@ -233,7 +233,16 @@ class ExactLinearStepper {
   // What eval_point computes beside the state x_L (and the whole state in inexact modes).
   // kSystemGuards: the guards from System::guards even where Ĝ y would do (root finding and the
   // located state: the transition then sees the crossing the system itself computes).
-  enum Need : unsigned { kGuards = 1u, kSlopes = 2u, kQuadratures = 4u, kSystemGuards = 8u };
+  // kNear (exact modes): start from the last kNear point (near_t_, near_y_) by a short hop when
+  // that is closer than the step start, and keep the result as the next one (a root search;
+  // near_t_ = NaN starts afresh).
+  enum Need : unsigned {
+    kGuards = 1u,
+    kSlopes = 2u,
+    kQuadratures = 4u,
+    kSystemGuards = 8u,
+    kNear = 16u
+  };
   // Exact (or exponential) state at tau in [t_, t1] into ys_ / xs_; with kGuards the guards into
   // gt_, with kSlopes also their slopes into st_; with kQuadratures (exact modes) the quadratures
   // too (else they keep their values at t_: guards never read them). False when not finite.
@@ -322,6 +331,8 @@ class ExactLinearStepper {
   Vector y_, y1_, ys_, r_, r1_, rs_, yq_;
   State x_, x1_, xs_, xe_, xd_, xr_, fr_, xg_;
   GuardVector ga_, gb_, gt_, sa_, sb_, st_, gp_, gm_, roots_;
+  Scalar near_t_ = std::numeric_limits<Scalar>::quiet_NaN();  // see Need::kNear
+  Vector near_y_;
   TriggeredGuards triggered_;
   detail::ZenoGuard<Scalar> zeno_;
   Scalar t_ = 0, te_ = 0, t0_ = 0, delta_ = 0;
@@ -353,6 +364,9 @@ class ExactLinearStepper {
   bool frozen_ = false, slip_retry_ = false, long_slip_ = false;
   Vector absr_;
   GuardVector free_g0_, free_s0_, free_g1_, free_s1_, rbound_;
+  // The 14 guard-sized vectors above, parked per guard count (see start_mode).
+  static constexpr std::size_t kGuardVectors = 14;
+  std::vector<std::array<GuardVector, kGuardVectors>> guard_banks_;
   Vector absy_, bound_, yp_;
   bool jumps_valid_ = false;
   // Per slot of the flow's mode cache: the Van Loan blocks of the Â in that slot (valid while the
@@ -435,7 +449,7 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
   // and would evict the few modes of a stick-slip run that do.
   flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_, exact_);
   lawson_.initialize(flow_.dim());
-  for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_}) v->resize(flow_.dim());
+  for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_, &near_y_}) v->resize(flow_.dim());
   // Closed-form pieces of an exact mode: dropped when Â, the grid step or the forms changed.
   const bool forms = exact_ && lp_.has_quadrature_forms();
   bool forms_changed = forms != forms_;
@@ -692,10 +706,23 @@ bool ExactLinearStepper<System>::start_mode(const Mode& m, Scalar t, StepperStat
   mode_steps_ = 0;
   mode_samples_ = 0;
   const Eigen::Index ng = sys_.num_guards(m);
-  if (ga_.size() != ng)
-    for (GuardVector* g : {&ga_, &gb_, &gt_, &sa_, &sb_, &st_, &gp_, &gm_, &roots_, &free_g0_, &free_s0_,
-                            &free_g1_, &free_s1_, &rbound_})
-      g->resize(ng);
+  if (ga_.size() != ng) {
+    // Modes with different guard counts (stick and slip of a contact) alternate at every event:
+    // park the vectors of the old count and take those of the new one, so that they are
+    // allocated once per count, not at every switch.
+    std::array<GuardVector*, kGuardVectors> own{&ga_, &gb_, &gt_, &sa_, &sb_, &st_, &gp_,
+                                                &gm_, &roots_, &free_g0_, &free_s0_, &free_g1_,
+                                                &free_s1_, &rbound_};
+    const auto old_ng = static_cast<std::size_t>(ga_.size());
+    const auto new_ng = static_cast<std::size_t>(ng);
+    if (guard_banks_.size() <= std::max(old_ng, new_ng))
+      guard_banks_.resize(std::max(old_ng, new_ng) + 1);
+    for (std::size_t j = 0; j < kGuardVectors; ++j) {
+      own[j]->swap(guard_banks_[old_ng][j]);
+      own[j]->swap(guard_banks_[new_ng][j]);
+      own[j]->resize(ng);  // no-op after the first mode with ng guards
+    }
+  }
   guarded_ = ng > 0;
   eval_guards(m, t, x_, ga_, st);
   if (!detail::all_finite(ga_)) return false;
@@ -779,15 +806,39 @@ bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, unsigned 
                                             StepperStats& st) {
   const bool slopes = (need & kSlopes) != 0;
   if (exact_) {
-    ys_ = y_;
-    flow_.expv(tau - t_, ys_, work_);
-    flow_.set_clock(tau, ys_);
-    if ((need & kQuadratures) != 0 && !quadrature(m, t_, y_, tau, ys_, st)) return false;
-    if (closed_form_guards() && (need & (kGuards | kSlopes)) != 0 && (need & kSystemGuards) == 0) {
+    using std::abs;
+    const bool near = (need & kNear) != 0;
+    bool hopped = false;
+    if (near && abs(tau - near_t_) < tau - t_) {
+      ys_ = near_y_;
+      hopped = flow_.hop(tau - near_t_, ys_, work_);
+    }
+    if (!hopped) {
+      ys_ = y_;
+      flow_.expv(tau - t_, ys_, work_);
+    }
+    if (near) {
+      near_y_ = ys_;
+      near_t_ = tau;
+    }
+    if ((need & kQuadratures) != 0) {
+      // A state that goes on (a sample, the next link of the sample chain, the event state): its
+      // clock exact. Points of a root search keep the propagated clock (within a step of the
+      // exact clock of y_, to round-off), which spares them a cosine and sine each.
+      flow_.set_clock(tau, ys_);
+      if (!quadrature(m, t_, y_, tau, ys_, st)) return false;
+    }
+    if (closed_form_guards() && (need & (kGuards | kSlopes)) != 0) {
       xs_ = ys_.head(nx_);
-      gt_.noalias() = ghat_ * ys_;
       if (slopes) st_.noalias() = gdot_ * ys_;
-      return detail::all_finite(xs_) && detail::all_finite(gt_);
+      if ((need & kSystemGuards) == 0) {
+        gt_.noalias() = ghat_ * ys_;
+      } else {
+        if (!detail::all_finite(xs_)) return false;
+        eval_guards(m, tau, xs_, gt_, st);
+      }
+      return detail::all_finite(xs_) && detail::all_finite(gt_) &&
+             (!slopes || detail::all_finite(st_));
     }
   } else if (dense_point(tau)) {
     if (slopes && !remainder(m, tau, ys_, rs_, st)) return false;
@@ -859,6 +910,7 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
   const Scalar tol = opt_.event_time_tolerance;
   Scalar first = std::numeric_limits<Scalar>::infinity();
   Eigen::Index first_guard = -1;
+  near_t_ = std::numeric_limits<Scalar>::quiet_NaN();  // no point of this step yet
   // Roots per guard (infinity = none).
   for (Eigen::Index i = 0; i < ng; ++i) {
     roots_[i] = std::numeric_limits<Scalar>::infinity();
@@ -875,12 +927,30 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
       found = grazing_bracket(m, i, t_, da, sa, t1, db, sb, br, st);
     }
     if (!found) continue;
-    auto phi = [&](Scalar tc) {
-      if (!eval_point(m, tc, kGuards | kSystemGuards, st))
-        return -std::numeric_limits<Scalar>::infinity();
-      return monitor_.distance(i, gt_[i]);
-    };
-    const auto root = detail::illinois_root(phi, br.lo, br.dlo, br.hi, br.dhi, tol);
+    detail::RootBracket<Scalar> root{};
+    if (closed_form_guards()) {
+      // The guard's rate comes with the state (Ĝ Â y, one product): Newton on the closed form.
+      auto phi = [&](Scalar tc, Scalar& slope) {
+        if (!eval_point(m, tc, kGuards | kSlopes | kSystemGuards | kNear, st))
+          return -std::numeric_limits<Scalar>::infinity();
+        const Scalar d = monitor_.distance(i, gt_[i]);
+        slope = monitor_.distance(i, gt_[i] + st_[i]) - d;
+        return d;
+      };
+      // End slopes for the first (Hermite) point where the bracket is the whole step.
+      const Scalar nan = std::numeric_limits<Scalar>::quiet_NaN();
+      const bool whole = br.lo == t_ && br.hi == t1;
+      const Scalar slo = whole ? monitor_.distance(i, ga_[i] + sa_[i]) - br.dlo : nan;
+      const Scalar shi = whole ? monitor_.distance(i, gb_[i] + sb_[i]) - br.dhi : nan;
+      root = detail::newton_root(phi, br.lo, br.dlo, slo, br.hi, br.dhi, shi, tol);
+    } else {
+      auto phi = [&](Scalar tc) {
+        if (!eval_point(m, tc, kGuards | kSystemGuards, st))
+          return -std::numeric_limits<Scalar>::infinity();
+        return monitor_.distance(i, gt_[i]);
+      };
+      root = detail::illinois_root(phi, br.lo, br.dlo, br.hi, br.dhi, tol);
+    }
     roots_[i] = root.hi;
     if (root.hi < first) {
       first = root.hi;
@@ -895,7 +965,9 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
   } else if (!exact_ && dense_ == Dense::Ready && opt_.event_state == EventState::Reintegrate) {
     te_ = refine_on_steps(m, first_guard, first, t1, st);
   } else {
-    eval_point(m, first, kQuadratures | kGuards | kSystemGuards, st);
+    // From the root search's last point (a hop of at most the event time tolerance) where it
+    // ran on the closed form.
+    eval_point(m, first, kQuadratures | kGuards | kSystemGuards | (closed_form_guards() ? kNear : 0u), st);
     xe_ = xs_;
   }
   // Fired (as HybridStepper): every guard crossed at the handed state, and every guard whose root

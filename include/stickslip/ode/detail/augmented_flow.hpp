@@ -80,13 +80,17 @@ class AugmentedFlow {
       ++generation_;
       a_.swap(build_);
       ladder_k_ = -1;
+      ladder_in_cache_ = false;
+      nilpotent_ = -1;
       norm1_ = a_.cwiseAbs().colwise().sum().maxCoeff();
-      balance();
       slot_ = -1;
       for (std::size_t i = 0; i < cache_.size() && i < cache_size_; ++i) {
         Entry& e = cache_[i];
         if (e.ladder_k < 0 || e.a.rows() != dim || !(e.a == a_)) continue;
-        ladder_ = e.ladder;  // same sizes after warm-up: no allocation
+        ladder_in_cache_ = true;  // read in place (no copy of the K + 1 matrices)
+        bal_ = e.bal;             // the balancing of Â with it
+        scale_ = e.scale;
+        bnorm1_ = e.bnorm1;
         ladder_k_ = e.ladder_k;
         base_ = e.base;
         rate_ = e.rate;
@@ -96,6 +100,7 @@ class AugmentedFlow {
         ++st.mode_cache_hits;
         break;
       }
+      if (!restored) balance();
     }
     last_restored_ = restored || (same && last_restored_);
     if (restored) {
@@ -181,6 +186,7 @@ class AugmentedFlow {
   void prepare(Scalar base, ExactStepperStats& st, bool keep = true) {
     if (!(base > 0) || !std::isfinite(base) || !(norm1_ > 0)) {
       ladder_k_ = -1;
+      ladder_in_cache_ = false;
       return;
     }
     if (ladder_k_ >= 0 && base == base_) return;
@@ -188,6 +194,7 @@ class AugmentedFlow {
     using std::log2;
     const int K = std::max(
         0, static_cast<int>(ceil(log2(std::ldexp(bnorm1_ * base, ladder_tail_bits)))));
+    ladder_in_cache_ = false;
     ladder_.resize(static_cast<std::size_t>(K) + 1);
     expm(base / std::pow(Scalar(2), Scalar(K)), ladder_[static_cast<std::size_t>(K)], st);
     for (int k = K; k > 1; --k) {
@@ -205,6 +212,9 @@ class AugmentedFlow {
       Entry& e = cache_[static_cast<std::size_t>(slot_)];
       e.a = a_;
       e.ladder = ladder_;
+      e.bal = bal_;
+      e.scale = scale_;
+      e.bnorm1 = bnorm1_;
       e.ladder_k = K;
       e.base = base;
       e.rate = rate_;
@@ -217,6 +227,8 @@ class AugmentedFlow {
   /// back (0: none); clears the cache.
   void set_cache_size(std::size_t entries) {
     cache_size_ = entries;
+    if (ladder_in_cache_) ladder_ = ladder();  // keep the current ladder
+    ladder_in_cache_ = false;
     cache_.clear();
     slot_ = -1;
     next_slot_ = 0;
@@ -296,28 +308,45 @@ class AugmentedFlow {
   /// exp(Â base) of the ladder (prepare() first).
   const Matrix& propagator() const {
     STICKSLIP_ASSERT(ladder_k_ >= 0 && "AugmentedFlow: prepare() first");
-    return ladder_[0];
+    return ladder()[0];
   }
 
   /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
   /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
   /// without a ladder, s Taylor sub-steps with ||B||_1 tau / s <= 1 (B: the balanced Â).
+  /// v <- exp(Â dt) v for a short hop of either sign, ||B||_1 |dt| <= 1/2 (B: the balanced Â),
+  /// by one Taylor series; false (v unchanged) when the hop is longer. Moves a point of a root
+  /// search to the next one close by for a few products instead of a ladder walk from the step
+  /// start.
+  bool hop(Scalar dt, Vector& v, ExactStepperStats& st) {
+    using std::abs;
+    if (!(bnorm1_ * abs(dt) <= Scalar(0.5))) return false;
+    taylor(dt, v, st);
+    return true;
+  }
+
   void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
     if (!(tau > 0) || !(norm1_ > 0)) return;
     if (ladder_k_ >= 0) {
       using std::floor;
       const Scalar whole = floor(tau / base_);
-      for (long i = 0; i < static_cast<long>(whole); ++i) apply(ladder_[0], v, st);
+      const std::vector<Matrix>& lad = ladder();
+      for (long i = 0; i < static_cast<long>(whole); ++i) apply(lad[0], v, st);
       Scalar rest = tau - whole * base_;
       Scalar step = base_;
       for (int k = 1; k <= ladder_k_; ++k) {
         step /= Scalar(2);
         if (rest >= step) {
-          apply(ladder_[static_cast<std::size_t>(k)], v, st);
+          apply(lad[static_cast<std::size_t>(k)], v, st);
           rest -= step;
         }
       }
       taylor(rest, v, st);
+      return;
+    }
+    if (nilpotent_ < 0) nilpotent_ = structurally_nilpotent() ? 1 : 0;
+    if (nilpotent_ == 1) {  // the series ends (a stick phase without forcing): one sum is exact
+      taylor(tau, v, st);
       return;
     }
     using std::ceil;
@@ -335,7 +364,7 @@ class AugmentedFlow {
   // v <- sum_k (Â dt)^k / k! v, in the balanced coordinates w = D^-1 v (terms (B dt)^k / k! w),
   // until the term is below the unit round-off relative to the sum.
   void taylor(Scalar dt, Vector& v, ExactStepperStats& st) {
-    if (!(dt > 0)) return;
+    if (!(dt != 0)) return;
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
     v.array() /= scale_.array();
     term_ = v;
@@ -348,6 +377,20 @@ class AugmentedFlow {
         break;
     }
     v.array() *= scale_.array();
+  }
+
+  // True when |B|^p = 0 for some p <= dim (entrywise |B|): then B^p w = 0 exactly for every w,
+  // whatever the values, and the Taylor series of exp(B tau) w is a polynomial of degree < p.
+  bool structurally_nilpotent() {
+    const Eigen::Index d = bal_.rows();
+    nil_abs_ = bal_.cwiseAbs();  // own scratch: same sizes after warm-up, no allocation
+    nil_pow_ = nil_abs_;
+    for (Eigen::Index p = 1; p <= d; ++p) {
+      if ((nil_pow_.array() == Scalar(0)).all()) return true;
+      nil_next_.noalias() = nil_abs_ * nil_pow_;
+      nil_pow_.swap(nil_next_);
+    }
+    return false;
   }
 
   // B = D^-1 Â D with D = diag(scale_), powers of 2, chosen so that each component's row and
@@ -397,26 +440,32 @@ class AugmentedFlow {
   }
 
   struct Entry {
-    Matrix a;
+    Matrix a, bal;
+    Vector scale;
     std::vector<Matrix> ladder;
     int ladder_k = -1;
-    Scalar base = 0, rate = 0, decay = 0;
+    Scalar base = 0, rate = 0, decay = 0, bnorm1 = 0;
     std::uint64_t stamp = 0;
   };
   std::vector<Entry> cache_;
   std::size_t cache_size_ = 8, next_slot_ = 0;
   int slot_ = -1;
   bool last_restored_ = false;
-  Matrix a_, bal_, build_, big_, big_exp_;
+  Matrix a_, bal_, build_, big_, big_exp_, nil_abs_, nil_pow_, nil_next_;
   PadeExponential<Scalar> pade_, big_pade_;  // the exponentials of Â (dim) and of Van Loan's blocks (2 dim)
   Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
+  bool ladder_in_cache_ = false;  // the current ladder is cache_[slot_].ladder, not ladder_
+  const std::vector<Matrix>& ladder() const {
+    return ladder_in_cache_ ? cache_[static_cast<std::size_t>(slot_)].ladder : ladder_;
+  }
   Vector term_, prod_;
   std::vector<Scalar> omega_;
   Eigen::EigenSolver<Matrix> eig_;
   Eigen::Index nx_ = 0, n_ = 0;
   Scalar norm1_ = 0, bnorm1_ = 0, rate_ = 0, decay_ = 0, fastest_ = 0, base_ = 0;
   int ladder_k_ = -1;  // -1: no ladder
+  int nilpotent_ = -1;  // Â structurally nilpotent: 1 yes, 0 no, -1 not checked yet
   std::uint64_t version_ = 0, generation_ = 0;
   bool rate_valid_ = false;
 };
