@@ -48,6 +48,18 @@ struct ExactStepperStats {
 
 namespace detail {
 
+/// out = m v for the small products of the exact stepper: Eigen's coefficient-based product
+/// (lazyProduct, inlined) up to 8 columns, where the general matrix-vector kernel's set-up costs
+/// more than the arithmetic (a 3 x 3 to 8 x 8 augmented generator of a one- or two-mass system);
+/// the kernel above that.
+template <class M, class V, class Out>
+void small_product(const M& m, const V& v, Out& out) {
+  if (m.cols() <= 8)
+    out.noalias() = m.lazyProduct(v);
+  else
+    out.noalias() = m * v;
+}
+
 /// Â of a mode, exp(Â tau) y by a scaled Taylor series, and a cached exp(Â delta).
 template <class Scalar>
 class AugmentedFlow {
@@ -357,7 +369,7 @@ class AugmentedFlow {
 
  private:
   void apply(const Matrix& phi, Vector& v, ExactStepperStats& st) {
-    prod_.noalias() = phi * v;
+    small_product(phi, v, prod_);
     v.swap(prod_);
     ++st.matvecs;
   }
@@ -369,7 +381,7 @@ class AugmentedFlow {
     v.array() /= scale_.array();
     term_ = v;
     for (int k = 1; k <= 40; ++k) {
-      prod_.noalias() = bal_ * term_;
+      small_product(bal_, term_, prod_);
       ++st.matvecs;
       term_ = (dt / Scalar(k)) * prod_;
       v += term_;
