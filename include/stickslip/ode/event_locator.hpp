@@ -14,6 +14,7 @@
 ///  - Either: armed with s = sign(g0) when |g0| > z; otherwise it cannot fire (s = 0) until
 ///    |g| > z, then s = sign(g).
 
+#include <stickslip/ode/detail/hermite_cubic.hpp>
 #include <stickslip/ode/hybrid_system.hpp>
 
 #include <Eigen/Core>
@@ -193,30 +194,23 @@ RootBracket<Scalar> newton_root(PhiSlope&& phi, Scalar lo, Scalar flo, Scalar sl
   // First point: the root of the cubic Hermite interpolant p(s), s in [0, 1], by Newton steps on
   // the cubic itself from the secant point (the secant point when they leave [0, 1]).
   const Scalar H = hi - lo;
-  Scalar c;
-  {
-    const Scalar s0 = flo / (flo - fhi);
-    Scalar s = isfinite(s0) ? s0 : Scalar(0.5);
-    if (isfinite(slo) && isfinite(shi)) {
-      const Scalar a = flo, b = H * slo, d = fhi, e = H * shi;
-      for (int k = 0; k < 8; ++k) {
-        const Scalar s2 = s * s, s3 = s2 * s;
-        const Scalar p = (2 * s3 - 3 * s2 + 1) * a + (s3 - 2 * s2 + s) * b +
-                         (-2 * s3 + 3 * s2) * d + (s3 - s2) * e;
-        const Scalar dp = (6 * s2 - 6 * s) * a + (3 * s2 - 4 * s + 1) * b +
-                          (-6 * s2 + 6 * s) * d + (3 * s2 - 2 * s) * e;
-        const Scalar next = s - p / dp;
-        if (!(next > 0 && next < 1)) {
-          s = isfinite(s0) ? s0 : Scalar(0.5);
-          break;
-        }
-        const bool done = abs(next - s) <= eps;
-        s = next;
-        if (done) break;
+  const Scalar secant = flo / (flo - fhi);
+  const Scalar s_secant = isfinite(secant) ? secant : Scalar(0.5);
+  Scalar s = s_secant;
+  if (isfinite(slo) && isfinite(shi)) {
+    const HermiteCubic<Scalar> p{flo, H * slo, fhi, H * shi};
+    for (int k = 0; k < 8; ++k) {
+      const Scalar next = s - p(s) / p.derivative(s);
+      if (!(next > 0 && next < 1)) {
+        s = s_secant;
+        break;
       }
+      const bool done = abs(next - s) <= eps;
+      s = next;
+      if (done) break;
     }
-    c = inside(lo + s * H);
   }
+  Scalar c = inside(lo + s * H);
   Scalar last_step = H;  // the previous Newton correction (the bracket before the first)
   while (r.hi - r.lo > tol && r.evaluations < 400) {
     Scalar slope = std::numeric_limits<Scalar>::quiet_NaN();

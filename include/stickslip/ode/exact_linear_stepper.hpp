@@ -830,15 +830,13 @@ bool ExactLinearStepper<System>::eval_point(const Mode& m, Scalar tau, unsigned 
     }
     if (closed_form_guards() && (need & (kGuards | kSlopes)) != 0) {
       xs_ = ys_.head(nx_);
+      if (!detail::all_finite(xs_)) return false;
       if (slopes) detail::small_product(gdot_, ys_, st_);
-      if ((need & kSystemGuards) == 0) {
-        detail::small_product(ghat_, ys_, gt_);
-      } else {
-        if (!detail::all_finite(xs_)) return false;
+      if ((need & kSystemGuards) != 0)
         eval_guards(m, tau, xs_, gt_, st);
-      }
-      return detail::all_finite(xs_) && detail::all_finite(gt_) &&
-             (!slopes || detail::all_finite(st_));
+      else
+        detail::small_product(ghat_, ys_, gt_);
+      return detail::all_finite(gt_) && (!slopes || detail::all_finite(st_));
     }
   } else if (dense_point(tau)) {
     if (slopes && !remainder(m, tau, ys_, rs_, st)) return false;

@@ -323,9 +323,6 @@ class AugmentedFlow {
     return ladder()[0];
   }
 
-  /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
-  /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
-  /// without a ladder, s Taylor sub-steps with ||B||_1 tau / s <= 1 (B: the balanced Â).
   /// v <- exp(Â dt) v for a short hop of either sign, ||B||_1 |dt| <= 1/2 (B: the balanced Â),
   /// by one Taylor series; false (v unchanged) when the hop is longer. Moves a point of a root
   /// search to the next one close by for a few products instead of a ladder walk from the step
@@ -337,6 +334,10 @@ class AugmentedFlow {
     return true;
   }
 
+  /// v <- exp(Â tau) v, tau >= 0: floor(tau / base) products with Phi_0, one with each Phi_k of
+  /// the binary digits of the rest, and a Taylor series (||Â|| tau' <= 1/2) for what remains;
+  /// without a ladder, s Taylor sub-steps with ||B||_1 tau / s <= 1 (B: the balanced Â), or one
+  /// sum where Â is structurally nilpotent (the series ends).
   void expv(Scalar tau, Vector& v, ExactStepperStats& st) {
     if (!(tau > 0) || !(norm1_ > 0)) return;
     if (ladder_k_ >= 0) {

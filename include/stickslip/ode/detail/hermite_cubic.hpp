@@ -1,7 +1,7 @@
 #pragma once
 /// \file hermite_cubic.hpp
 /// \brief The cubic Hermite interpolant of a value and slope at both ends of an interval, on
-/// s in [0, 1] (internal to ExactLinearStepper's guard tests).
+/// s in [0, 1] (internal: ExactLinearStepper's guard tests, newton_root's first point).
 
 #include <array>
 #include <cmath>
@@ -24,12 +24,13 @@ struct HermiteCubic {
            (Scalar(-2) * s3 + Scalar(3) * s2) * p1 + (s3 - s2) * m1;
   }
 
+  /// p'(s) = qa s^2 + qb s + qc (coefficients below).
+  Scalar derivative(Scalar s) const { return (qa() * s + qb()) * s + qc(); }
+
   /// The stationary points of p in the open interval (0, 1) (roots of the quadratic p'(s) =
   /// qa s^2 + qb s + qc) into s; returns how many (0 to 2).
   int stationary_points(std::array<Scalar, 2>& s) const {
-    const Scalar qa = Scalar(6) * p0 + Scalar(3) * m0 - Scalar(6) * p1 + Scalar(3) * m1;
-    const Scalar qb = Scalar(-6) * p0 - Scalar(4) * m0 + Scalar(6) * p1 - Scalar(2) * m1;
-    const Scalar qc = m0;
+    const Scalar qa = this->qa(), qb = this->qb(), qc = this->qc();
     int n = 0;
     auto keep = [&](Scalar v) {
       if (v > 0 && v < 1) s[static_cast<std::size_t>(n++)] = v;
@@ -55,6 +56,11 @@ struct HermiteCubic {
     for (int k = 0; k < n; ++k) e = std::max(e, std::abs((*this)(s[static_cast<std::size_t>(k)]) - p0));
     return e;
   }
+
+ private:
+  Scalar qa() const { return Scalar(6) * p0 + Scalar(3) * m0 - Scalar(6) * p1 + Scalar(3) * m1; }
+  Scalar qb() const { return Scalar(-6) * p0 - Scalar(4) * m0 + Scalar(6) * p1 - Scalar(2) * m1; }
+  Scalar qc() const { return m0; }
 };
 
 }  // namespace detail
