@@ -18,6 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -756,11 +757,34 @@ PyContinuationPoint to_py(const ContinuationPoint<System>& pt) {
   return PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)};
 }
 
+/// One part of continue_orbits(parts = n > 1) (SplitContinuation's ContinuationPart).
+struct PyContinuationPart {
+  double start_parameter = 0;
+  ContinuationStatus status = ContinuationStatus::Completed;
+  std::string message;
+  std::size_t points = 0, kept = 0;
+  bool joined = false;
+  double cpu_seconds = 0;
+  std::vector<PyContinuationPoint> dropped;  // the part's own points when the branch does not hold them
+};
+
 /// What continue_orbits returns.
 struct PyContinuation {
   ContinuationStatus status = ContinuationStatus::Completed;
   std::string message;
   std::vector<PyContinuationPoint> points;
+  std::vector<PyContinuationPart> parts;  // empty for parts = 1
+};
+
+/// What poincare_sections returns (PoincareSections, states as rows of a matrix).
+struct PyPoincare {
+  PoincareStatus status = PoincareStatus::NotPeriodic;
+  std::string message;
+  int period = 0;
+  Eigen::VectorXd recurrence;
+  double t0 = 0, period_time = 0;
+  Eigen::MatrixXd states;
+  std::vector<std::vector<ContactState>> modes;
 };
 
 /// The Python callables of continue_orbits as Continuation's std::functions. They hold no
@@ -772,6 +796,7 @@ struct ContinuationCallbacks {
   const py::object* period = nullptr;      // a float or period(p)
   const py::object* start_mode = nullptr;  // None or start_mode(system, t, x, mode) -> mode
   const py::object* on_point = nullptr;    // None or on_point(point)
+  const py::object* start = nullptr;       // None or start(system, p) -> (mode, t0, x0) (parts > 1)
 
   void set(System& system, double p) const {
     py::gil_scoped_acquire gil;
@@ -800,6 +825,17 @@ struct ContinuationCallbacks {
   void point(const ContinuationPoint<System>& pt) const {
     py::gil_scoped_acquire gil;
     (*on_point)(to_py(pt));
+  }
+  SplitContinuation<System>::Guess guess(System& system, double p) const {
+    py::gil_scoped_acquire gil;
+    const py::object r = (*start)(py::cast(&system, py::return_value_policy::reference), p);
+    const auto t = r.cast<std::tuple<std::vector<ContactState>, double, State>>();
+    SplitContinuation<System>::Guess g{to_mode(std::get<0>(t)), std::get<1>(t), std::get<2>(t)};
+    if (g.x0.size() != system.state_size())
+      throw std::invalid_argument("continue_orbits: start(system, p) returned x0 of size " +
+                                  std::to_string(g.x0.size()) + ", not state_size() = " +
+                                  std::to_string(system.state_size()));
+    return g;
   }
 };
 
@@ -866,10 +902,21 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("stability_changed", &PyContinuationPoint::stability_changed,
                     "the orbit's stability differs from the previous point's")
       .def_readonly("orbit", &PyContinuationPoint::orbit, "the PeriodicOrbit at p");
+  py::class_<PyContinuationPart>(m, "BranchPart", "One part of continue_orbits(parts > 1) (SplitContinuation).")
+      .def_readonly("start_parameter", &PyContinuationPart::start_parameter, "the parameter of its start orbit")
+      .def_readonly("status", &PyContinuationPart::status, "how the part's run ended (Stopped: it joined the next)")
+      .def_readonly("message", &PyContinuationPart::message)
+      .def_readonly("points", &PyContinuationPart::points, "points the part computed")
+      .def_readonly("kept", &PyContinuationPart::kept, "of them in the joined branch")
+      .def_readonly("joined", &PyContinuationPart::joined, "its branch ran into the next part's start")
+      .def_readonly("cpu_seconds", &PyContinuationPart::cpu_seconds, "CPU time of the part's thread")
+      .def_readonly("dropped", &PyContinuationPart::dropped,
+                    "its own points when the joined branch does not hold them (an earlier part did not join)");
   py::class_<PyContinuation>(m, "Branch", "A branch computed by continue_orbits.")
       .def_readonly("status", &PyContinuation::status)
       .def_readonly("message", &PyContinuation::message, "why it ended early (empty when Completed)")
       .def_readonly("points", &PyContinuation::points)
+      .def_readonly("parts", &PyContinuation::parts, "per part (parts > 1): what it did; empty for one part")
       .def_property_readonly("completed",
                              [](const PyContinuation& c) { return c.status == ContinuationStatus::Completed; })
       .def_property_readonly(
@@ -887,8 +934,12 @@ void bind_steady_state(py::module_& m) {
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
-         int chord_iterations, const py::object& start_mode, const py::object& on_point) {
+         int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
+         const py::object& start) {
         static const std::string where = "continue_orbits";
+        if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
+        if (!start.is_none() && !PyCallable_Check(start.ptr()))
+          throw std::invalid_argument(where + ": start must be None or a callable start(system, p)");
         if (!PyCallable_Check(parameter.ptr()))
           throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
         if (!PyCallable_Check(period.ptr())) {
@@ -915,11 +966,41 @@ void bind_steady_state(py::module_& m) {
         co.growth = growth;
         co.section_margin = section_margin;
         co.chord_iterations = chord_iterations;
-        const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point};
+        const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point, &start};
         State x = x0 ? *x0 : system.initial_state();
         Mode md = mode ? to_mode(*mode) : system.requested_mode();
         PyContinuation out;
+        // Parts 1 .. n-1 run on copies (made and destroyed with the GIL held: a load's Python
+        // time_function is copied with them).
+        std::vector<System> copies(static_cast<std::size_t>(parts - 1), system);
         py::gil_scoped_release release;
+        if (parts > 1) {
+          std::vector<System*> systems{&system};
+          for (System& c : copies) systems.push_back(&c);
+          SplitContinuation<System> split(
+              systems, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); },
+              opt, co);
+          if (!start_mode.is_none())
+            split.start_mode(
+                [&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
+          if (!on_point.is_none())
+            split.on_point([&cb](std::size_t, const ContinuationPoint<System>& pt) { cb.point(pt); });
+          const auto result = split.run([&](System& s, double p) {
+            if (start.is_none()) return SplitContinuation<System>::Guess{md, t0, x};
+            return cb.guess(s, p);
+          });
+          out.status = result.branch.status;
+          out.message = result.branch.message;
+          for (const auto& pt : result.branch.points) out.points.push_back(to_py(pt));
+          for (std::size_t k = 0; k < result.parts.size(); ++k) {
+            const auto& r = result.parts[k];
+            PyContinuationPart part{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined, r.cpu_seconds,
+                                    {}};
+            for (const auto& pt : result.dropped[k].points) part.dropped.push_back(to_py(pt));
+            out.parts.push_back(std::move(part));
+          }
+          return out;
+        }
         Continuation<System> cont(
             system, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
             co);
@@ -939,14 +1020,77 @@ void bind_steady_state(py::module_& m) {
       py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
       py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
+      py::arg("parts") = 1, py::arg("start") = py::none(),
       "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
       "orbit is shot from (mode, t0, x0) (default: the system's initial state). The arclength norm is Euclidean in "
       "(x_P, p): scale p so that both are of order one. section_margin > 0 moves the section t0 away from an "
       "event within that fraction of a period; chord_iterations > 0 lets the corrector first iterate on plain runs "
-      "with the last point's Jacobian (ContinuationOptions). A Python exception raised by a callable ends the run and "
-      "propagates. The GIL is released during the run and re-acquired for each callable.");
+      "with the last point's Jacobian (ContinuationOptions). parts = n > 1 follows the branch in n parts at once "
+      "(SplitContinuation: part k starts at the k-th of n equal cuts of [p0, p_end], on its own thread and a copy "
+      "of the system, and the parts are joined where one runs into the next one's start); start(system, p) -> "
+      "(mode, t0, x0) gives each part's start guess (default: mode, t0, x0 above), on_point is then called as the "
+      "parts find their points (not in branch order) and Branch.parts tells what each part did. A Python "
+      "exception raised by a callable ends the run and propagates. The GIL is released during the run and "
+      "re-acquired for each callable.");
+
+  py::enum_<PoincareStatus>(m, "PoincareStatus")
+      .value("Periodic", PoincareStatus::Periodic)
+      .value("NotPeriodic", PoincareStatus::NotPeriodic)
+      .value("IntegrationFailed", PoincareStatus::IntegrationFailed);
+  py::class_<PyPoincare>(m, "PoincareSections", "Poincaré sections of a forced response (docs/steady_state.md).")
+      .def_readonly("status", &PyPoincare::status)
+      .def_property_readonly("periodic", [](const PyPoincare& p) { return p.status == PoincareStatus::Periodic; })
+      .def_readonly("message", &PyPoincare::message, "why a run failed (empty otherwise)")
+      .def_readonly("period", &PyPoincare::period, "k of a period-k response, 0 when not periodic")
+      .def_readonly("recurrence", &PyPoincare::recurrence,
+                    "per k = 1 .. max_period: max_n |x_P(n) - x_P(n - k)| / max_n |x_P(n)| over the record")
+      .def_readonly("t0", &PyPoincare::t0, "time of the first section")
+      .def_readonly("period_time", &PyPoincare::period_time, "the forcing period T")
+      .def_readonly("states", &PyPoincare::states, "the sections x(t0 + nT), one row per n")
+      .def_readonly("modes", &PyPoincare::modes, "the contact states at each section");
+  m.def(
+      "poincare_sections",
+      [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
+         int transient_periods, int record_periods, int max_period, double tolerance,
+         std::optional<std::vector<Index>> periodic, double rtol, double atol) {
+        PoincareOptions<double> opt;
+        opt.transient_periods = transient_periods;
+        opt.record_periods = record_periods;
+        opt.max_period = max_period;
+        opt.tolerance = tolerance;
+        opt.periodic = periodic ? *periodic
+                                : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+        opt.stepper.rtol = rtol;
+        opt.stepper.atol = atol;
+        const State x = x0 ? *x0 : system.initial_state();
+        const Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        PyPoincare out;
+        {
+          py::gil_scoped_release release;
+          const auto r = poincare_sections(system, md, t0, x, period, opt);
+          out.status = r.status;
+          out.message = r.message;
+          out.period = r.period;
+          out.recurrence = Eigen::Map<const Eigen::VectorXd>(r.recurrence.data(), static_cast<Index>(r.recurrence.size()));
+          out.t0 = r.t0;
+          out.period_time = r.period_time;
+          out.states.resize(static_cast<Index>(r.states.size()), x.size());
+          for (std::size_t n = 0; n < r.states.size(); ++n) out.states.row(static_cast<Index>(n)) = r.states[n].transpose();
+          for (const Mode& mn : r.modes) out.modes.push_back(to_list(mn));
+        }
+        return out;
+      },
+      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+      py::arg("transient_periods") = 100, py::arg("record_periods") = 32, py::arg("max_period") = 8,
+      py::arg("tolerance") = 1e-6, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      "Poincaré sections of the forced response from (mode, t0, x0) (default: the system's initial state): "
+      "transient_periods whole periods, then the state at the next record_periods multiples of `period`, and the "
+      "smallest k <= max_period with which they repeat to `tolerance` (relative, over the components `periodic`, "
+      "default q, q', x_d, x_d'): a period-k response, or not periodic (quasi-periodic, chaotic or still "
+      "transient). A periodic section is a guess for find_periodic_orbit with period k T (poincare_sections, "
+      "docs/steady_state.md).");
 }
 
 }  // namespace

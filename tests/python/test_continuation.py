@@ -162,3 +162,105 @@ def test_a_damper_stuck_all_period_has_stick_fraction_one():
     orbit = ss.find_periodic_orbit(system, 2 * math.pi / 250.0, tolerance=1e-8)
     assert orbit.ok, orbit.message
     assert orbit.stick_fractions == [pytest.approx(1.0, abs=1e-12)] and orbit.switches == [0]
+
+
+def test_a_branch_in_two_parts_joins_and_is_the_closed_form_receptance():
+    # parts=2 (SplitContinuation: part 1 starts at the middle of the range on a copy of the system,
+    # on its own thread). The joined branch must be the closed form at every point (same bounds
+    # as above), increasing in p without a gap, with part 0 joined into part 1 and every point of
+    # both kept. The start guesses: part 0 the given state, part 1 the `start` callable's (here
+    # the rest state: one Newton step reaches the orbit of a linear scene).
+    at, basis, psi = scene()
+    starts = []
+
+    def start(system, p):
+        starts.append(p)
+        return [], 0.0, system.initial_state()
+
+    branch = ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                                lambda p: 2 * math.pi / (p * UNIT), rtol=1e-9, atol=1e-14,
+                                initial_step=0.05, max_step=0.1, parts=2, start=start)
+    assert branch.completed, branch.message
+    assert sorted(starts) == pytest.approx([2.3, 2.6], rel=1e-15)  # one guess per part, at its cut
+    assert len(branch.parts) == 2
+    first, second = branch.parts
+    assert first.joined and first.status == ss.ContinuationStatus.Stopped and first.kept == first.points
+    assert second.start_parameter == pytest.approx(2.6, rel=1e-15)
+    assert second.status == ss.ContinuationStatus.Completed and second.kept == second.points
+    assert first.dropped == [] and second.dropped == []
+    p = branch.parameters
+    assert len(p) == first.kept + second.kept and np.all(np.diff(p) > 0) and p[-1] > 2.75
+    assert p[p < 2.6].size and p[p >= 2.6].size  # points from both parts
+    for pt in branch.points:
+        x0, amp = receptance(psi, basis, 1.0, pt.parameter * UNIT)
+        assert np.abs(pt.orbit.x0[:x0.size] - x0).max() < 1e-6 * np.abs(x0).max(), pt.parameter
+    # Bad part counts and start callables are named.
+    system = at(1.0, 230.0)
+    with pytest.raises(ValueError, match="parts must be >= 1"):
+        ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=0)
+    with pytest.raises(ValueError, match="start must be None or a callable"):
+        ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=2, start=1.0)
+    with pytest.raises(ValueError, match="start\\(system, p\\) returned x0 of size 1"):
+        ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=2,
+                           start=lambda s, p: ([], 0.0, np.zeros(1)))
+
+
+def state_at(psi, basis, F, W, t):
+    """Closed form of the steady state (q, q') at time t under F sin(W t) (see receptance)."""
+    w = basis.omega
+    a = psi * F / (w ** 2 - W ** 2 + 2j * ZETA * w * W) * np.exp(1j * W * t)
+    return np.concatenate([np.imag(a), np.imag(1j * W * a)])
+
+
+def two_tone(F1, W1, F2, W2):
+    """The cantilever of scene() with two harmonic loads at 0.1 m."""
+    f = ss.FrameModel()
+    root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
+    m = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 10)
+    f.clamp(root)
+    basis = ss.compute_modes(f, num_modes=2).with_modal_damping(np.full(2, ZETA))
+    loads = [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F1, W1),
+             ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F2, W2)]
+    return ss.FrictionDampedSystem(f, basis, [], loads)
+
+
+@pytest.mark.parametrize("k", [1, 3])
+def test_poincare_sections_of_a_two_tone_linear_response(k):
+    # Loads at W and W / k on the damped cantilever: the steady response repeats every k periods
+    # T = 2 pi / W, exactly (superposition of two closed-form receptances). After 200 periods
+    # (5.0 s) the free vibration from rest has decayed by exp(-zeta w_1 5.0) = 5e-12, the runs at
+    # rtol 1e-10 add ~1e-10 of the state: the sections match the closed form to 1e-7 of their
+    # largest component, the recurrence at k is below 1e-7 and at every j < k above 1e-3 (the
+    # W / k part of the response, a third of the state, turns by 2 pi j / k between sections).
+    at, basis, psi = scene()
+    W = 250.0
+    T = 2 * math.pi / W
+    system = two_tone(1.0, W, 0.5, W / k)
+    r = ss.poincare_sections(system, T, transient_periods=200, record_periods=16, max_period=4)
+    assert r.status == ss.PoincareStatus.Periodic and r.periodic and r.period == k, r.recurrence
+    assert r.message == "" and r.period_time == T and r.t0 == pytest.approx(200 * T, rel=1e-14)
+    assert r.states.shape[0] == 16 and len(r.modes) == 16 and r.recurrence.size == 4
+    assert r.recurrence[k - 1] < 1e-7 and np.all(r.recurrence[:k - 1] > 1e-3)
+    scale = np.abs(r.states[:, :4]).max()
+    for n in range(16):
+        t = r.t0 + n * T
+        x = state_at(psi, basis, 1.0, W, t) + state_at(psi, basis, 0.5, W / k, t)
+        assert np.abs(r.states[n, :4] - x).max() < 1e-7 * scale, n
+
+
+def test_poincare_sections_report_a_quasi_periodic_response_and_bad_input():
+    # A second tone at the golden ratio of W never repeats: its phase moves by 2 pi 0.618 j per
+    # j periods, never within 0.05 turn of whole for j <= 8, i.e. a recurrence > 1e-3 at every k.
+    at, basis, psi = scene()
+    W = 250.0
+    T = 2 * math.pi / W
+    system = two_tone(1.0, W, 0.5, W * (math.sqrt(5) - 1) / 2)
+    r = ss.poincare_sections(system, T, transient_periods=50)
+    assert r.status == ss.PoincareStatus.NotPeriodic and not r.periodic and r.period == 0
+    assert r.recurrence.size == 8 and np.all(r.recurrence > 1e-3)
+    with pytest.raises(ValueError, match="poincare_sections: T must be finite and > 0"):
+        ss.poincare_sections(system, -T)
+    with pytest.raises(ValueError, match="options.record_periods must be >= 2 options.max_period"):
+        ss.poincare_sections(system, T, record_periods=4, max_period=8)
+    with pytest.raises(ValueError, match="options.max_period"):
+        ss.poincare_sections(system, T, max_period=0)
