@@ -2,7 +2,8 @@
 // frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
 // state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
 // this thread:
-//   orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick] [--out file.json]
+//   orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick]
+//                   [--mu-s m] [--mu-k m] [--out file.json]
 // Per preload (5 % modal damping, 200 rad/s, energy audit off, the example's shooting options):
 // one plain period and one variational period (steps, RHS evaluations); shooting from rest and
 // from transients of 10 and 60 periods, with the finite-difference and the variational
@@ -101,6 +102,7 @@ int main(int argc, char** argv) {
   bool quick = false;  // skip the shootings after 10 periods and from rest (the slow ones)
   int repeats = 5;     // of the shooting after 60 periods (variational): its median
   std::string out = "orbit_benchmark.json";
+  blade::BladeParameters base;  // the paper's friction coefficients unless --mu-s / --mu-k
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--preloads" && i + 1 < argc) {
@@ -115,24 +117,30 @@ int main(int argc, char** argv) {
       repeats = std::max(1, std::stoi(argv[++i]));
     } else if (a == "--quick") {
       quick = true;
+    } else if (a == "--mu-s" && i + 1 < argc) {
+      base.mu_s = std::stod(argv[++i]);
+    } else if (a == "--mu-k" && i + 1 < argc) {
+      base.mu_k = std::stod(argv[++i]);
     } else if (a == "--out" && i + 1 < argc) {
       out = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick] [--out file.json]\n");
+      std::fprintf(stderr, "usage: orbit_benchmark [--preloads a,b] [--frc-points n] [--frc-parts n] [--repeats k] [--quick] "
+                           "[--mu-s m] [--mu-k m] [--out file.json]\n");
       return 2;
     }
   }
   std::ofstream j(out);
-  j << "{\n  \"scene\": \"blade, 5 % modal damping, 200 rad/s, rtol 1e-10, Newton tolerance 1e-7\",\n  \"preloads\": [";
+  j << "{\n  \"scene\": \"blade, 5 % modal damping, 200 rad/s, rtol 1e-10, Newton tolerance 1e-7\",\n  \"mu_s\": "
+    << blade::jnum(base.mu_s) << ", \"mu_k\": " << blade::jnum(base.mu_k) << ",\n  \"preloads\": [";
   for (std::size_t k = 0; k < preloads.size(); ++k) {
-    blade::BladeParameters p;
+    blade::BladeParameters p = base;
     p.preload = preloads[k];
     p.damping_ratio = 0.05;
     p.model.energy_audit = false;
     blade::BladeScene scene = blade::make_blade_scene(p);
     auto& sys = *scene.system;
     const double T = 2 * M_PI / p.force_omega;
-    std::printf("N0 %g N\n", p.preload);
+    std::printf("N0 %g N (mu_s %g, mu_k %g)\n", p.preload, p.mu_s, p.mu_k);
     // The orbit (the reference for the transient) from the 60-period start, variational.
     stickslip::PeriodicOrbit<System> orbit;
     Timed v60t, v10t, v0t, f60t, f10t;

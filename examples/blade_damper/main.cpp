@@ -76,6 +76,8 @@ Usage: blade_damper [options]
   --platform-elements n  elements on the platform, even (default 8)
   --y0 Y                 excitation point above the root [m] (default 0.05)
   --damping z            modal damping ratio of every mode (default 0)
+  --mu-s m --mu-k m      static and kinetic friction coefficients (default 0.35, 0.3;
+                         mu_s >= mu_k)
   --integrator name      rk4 | dopri5 | rosenbrock23 | exponential (default dopri5)
   --rtol r --atol a      tolerances of the adaptive integrators (default 1e-7, 1e-10)
   --dt h                 RK4 step [s] (default 1e-4, the paper's)
@@ -164,6 +166,10 @@ Cli parse(int argc, char** argv) {
       c.params.y0 = std::stod(need(i));
     } else if (a == "--damping") {
       c.params.damping_ratio = std::stod(need(i));
+    } else if (a == "--mu-s") {
+      c.params.mu_s = std::stod(need(i));
+    } else if (a == "--mu-k") {
+      c.params.mu_k = std::stod(need(i));
     } else if (a == "--integrator") {
       c.settings.run.integrator = parse_integrator(need(i));
     } else if (a == "--rtol") {

@@ -244,5 +244,69 @@ TEST(SteadyStateDenHartog, FrequencyBranchMovesItsSectionAwayFromTheReversals) {
   EXPECT_GE(sections, 3);  // the start's move and at least one along the branch
 }
 
+// The same branch in two parts (SplitContinuation, section_margin 2 % of T): part 0's section moves
+// along the way (as above), so at the cut its orbits sit on another section than part 1's start;
+// the join carries its crossing step to part 1's section by plain runs. Part 0 must join part 1
+// there (before, parts on different sections never joined and part 0 ran on alone to the end),
+// the branch must hold every point of both parts, and every point must equal the closed form
+// at its own t0 (tolerances as in ContinuousSlidingOrbitIsTheClosedForm).
+TEST(SteadyStateDenHartog, FrequencyBranchInPartsJoinsAcrossMovedSections) {
+  const double ratio = 0.1, wn = std::sqrt(kStiffness / kMass), N = ratio * kForce / kMuK;
+  const auto params = [&](double w) { return make_scene(w / wn, ratio).p; };
+  stickslip::ContinuationOptions<double> co;
+  co.parameter_min = 0.6 * wn;
+  co.parameter_max = 0.95 * wn;
+  co.initial_step = 0.02;
+  co.max_step = 0.1;
+  co.max_points = 300;
+  co.section_margin = 0.02;
+  std::vector<Oscillator> systems(2, Oscillator(params(co.parameter_min), Contact(Law(kMuK, kMuK))));
+  stickslip::SplitContinuation<Oscillator> split(
+      {&systems[0], &systems[1]}, [&](Oscillator& o, double w) { o = Oscillator(params(w), o.contact()); },
+      [](double w) { return 2 * contact_test::kDenHartogPi / w; }, oscillator_options(), co);
+  split.start_mode([](Oscillator& o, double t, const Oscillator::State& xs, const S&) {
+    return o.consistent_mode(t, xs);
+  });
+  // Part 0 from 0.5 % of T after the displacement peak (inside the margin: its section moves at
+  // once), part 1 from t0 = 0; both from the closed form 5 % off.
+  const auto result = split.run([&](Oscillator& o, double w) {
+    const DenHartogOrbit ref(kMass, kStiffness, kForce, w, kMuK * N, kMuK * N);
+    const double t0 = w == co.parameter_min ? ref.t1 + ref.T / 2 + 0.005 * ref.T : 0.0;
+    double x = 0, v = 0;
+    ref.state(t0, x, v);
+    const Oscillator::State guess(1.05 * x, 0.95 * v, 0, 0);
+    return stickslip::SplitContinuation<Oscillator>::Guess{o.consistent_mode(t0, guess), t0, guess};
+  });
+  ASSERT_EQ(result.parts.size(), 2u);
+  const auto& p0 = result.parts[0];
+  const auto& p1 = result.parts[1];
+  EXPECT_TRUE(p0.joined) << p0.message;
+  EXPECT_EQ(p0.status, stickslip::ContinuationStatus::Stopped);
+  ASSERT_TRUE(result.completed()) << result.branch.message;
+  EXPECT_EQ(p0.kept, p0.points);
+  EXPECT_EQ(p1.kept, p1.points);
+  EXPECT_GE(p1.points, 5u);
+  const auto& pts = result.branch.points;
+  ASSERT_EQ(pts.size(), p0.points + p1.points);
+  // The join was across sections: part 0's last point and part 1's first differ in t0.
+  EXPECT_NE(pts[p0.points - 1].orbit.t0, pts[p0.points].orbit.t0);
+  std::size_t checked = 0;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    const auto& pt = pts[k];
+    if (k > 0) {
+      EXPECT_GT(pt.parameter, pts[k - 1].parameter);
+    }
+    const DenHartogOrbit ref(kMass, kStiffness, kForce, pt.parameter, kMuK * N, kMuK * N);
+    if (!ref.valid) continue;
+    ++checked;
+    SCOPED_TRACE(::testing::Message() << "omega " << pt.parameter << ", t0 " << pt.orbit.t0);
+    double xr = 0, vr = 0;
+    ref.state(pt.orbit.t0, xr, vr);
+    EXPECT_NEAR(pt.orbit.x0[0], xr, 1e-7 * ref.X);
+    EXPECT_NEAR(pt.orbit.x0[1], vr, 1e-7 * ref.X * pt.parameter);
+  }
+  EXPECT_GE(checked, pts.size() / 2);
+}
+
 }  // namespace
 }  // namespace steady_state_den_hartog_test

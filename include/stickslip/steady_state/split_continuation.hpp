@@ -7,6 +7,7 @@
 #include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/continuation.hpp>
+#include <stickslip/steady_state/period_run.hpp>
 
 #include <Eigen/Core>
 
@@ -65,9 +66,10 @@ struct SplitContinuationResult {
 /// later parts are dropped: the joined branch follows the curve that a single Continuation from
 /// the first cut traces (its points differ where the parts' steps do), whatever the later starts
 /// found. The speed-up is up to n on n cores when every part joins. options.max_points bounds
-/// each part. Points compare on one section t0 only: a step of part k whose orbits' t0 differs
-/// from part k + 1's start (ContinuationOptions::section_margin moved a section away from an
-/// event) does not join, so where the sections part, part k runs on alone.
+/// each part. Points compare on part k + 1's section t0: where part k's section moved
+/// (ContinuationOptions::section_margin moved it away from an event), the two points of its
+/// crossing step are carried there by a plain run each (of less than a period, on part k's
+/// system) before the test.
 ///
 /// The systems must be independent objects (copies at the same settings): `set_parameter`,
 /// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
@@ -152,9 +154,15 @@ class SplitContinuation {
     y[y.size() - 1] = pt.parameter;
     return y;
   }
-  // Does the step (a, b) of a part run into the next part's start?
-  bool joins(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b, Scalar p_next,
-             std::shared_future<Head>& next) const;
+  // (x_P, p) of a point on the section t0: its own when its orbit is there, else the state a plain
+  // run of the shift (t0 - its t0, modulo its period) from its own section reaches, on `sys` at
+  // the point's parameter (the forcing repeats every period: the same orbit, seen at t0). False
+  // when that run fails.
+  bool pack_on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0, Vector& y) const;
+  // Does the step (a, b) of a part (on `sys`, left at b's parameter) run into the next part's
+  // start?
+  bool joins(System& sys, const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
+             Scalar p_next, std::shared_future<Head>& next) const;
 
   std::vector<System*> systems_;
   typename Part::SetParameter set_;
@@ -167,15 +175,47 @@ class SplitContinuation {
 };
 
 template <class System>
-bool SplitContinuation<System>::joins(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
-                                      Scalar p_next, std::shared_future<Head>& next) const {
+bool SplitContinuation<System>::pack_on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0,
+                                                Vector& y) const {
+  if (pt.orbit.t0 == t0) {
+    y = pack(pt);
+    return true;
+  }
+  using std::fmod;
+  const Scalar T = pt.orbit.period;
+  Scalar shift = fmod(t0 - pt.orbit.t0, T);
+  if (shift < 0) shift += T;
+  if (!(shift > 0)) {  // t0 and the orbit's section differ by whole periods
+    y = pack(pt);
+    return true;
+  }
+  set_(sys, pt.parameter);
+  const PeriodRun<System> r = run_period(sys, pt.orbit.mode, pt.orbit.t0, pt.orbit.x0, shift, shooting_, false);
+  if (!r.ok()) return false;
+  ContinuationPoint<System> moved;
+  moved.parameter = pt.parameter;
+  moved.orbit.x0 = r.x_end;
+  y = pack(moved);
+  return true;
+}
+
+template <class System>
+bool SplitContinuation<System>::joins(System& sys, const ContinuationPoint<System>& a,
+                                      const ContinuationPoint<System>& b, Scalar p_next,
+                                      std::shared_future<Head>& next) const {
   const Scalar dir = Scalar(opt_.direction);
   if (!(dir * (a.parameter - p_next) < 0 && dir * (b.parameter - p_next) >= 0)) return false;
   const Head& head = next.get();  // waits for the next part's first two points
-  // (x_P, p) compare only on one section: a step whose orbits sit elsewhere (Continuation moved
-  // t0 away from an event, ContinuationOptions::section_margin) does not join
-  if (!head.valid || !(a.orbit.t0 == head.t0 && b.orbit.t0 == head.t0)) return false;
-  const Vector ya = pack(a), d = pack(b) - ya;
+  if (!head.valid) return false;
+  // (x_P, p) compare on one section: where Continuation moved this part's section away from an
+  // event (ContinuationOptions::section_margin), a and b are carried to the next part's by a
+  // plain run each (the system is then set back to b's parameter, where the part goes on).
+  Vector ya, yb;
+  const bool carried = !(a.orbit.t0 == head.t0 && b.orbit.t0 == head.t0);
+  const bool packed = pack_on_section(sys, a, head.t0, ya) && pack_on_section(sys, b, head.t0, yb);
+  if (carried) set_(sys, b.parameter);
+  if (!packed) return false;
+  const Vector d = yb - ya;
   const Scalar len2 = d.squaredNorm();
   if (!(len2 > 0) || !(d.dot(head.y1 - head.y0) > 0)) return false;
   using std::sqrt;
@@ -230,9 +270,9 @@ auto SplitContinuation<System>::run(const StartGuess& start) -> Result {
       if (k + 1 < n) {
         const Scalar p_next = start_parameter(k + 1);
         std::shared_future<Head> next = head_of[k + 1];
-        cont.stop_when([this, p_next, next](const ContinuationPoint<System>& a,
-                                            const ContinuationPoint<System>& b) mutable {
-          return joins(a, b, p_next, next);
+        cont.stop_when([this, &sys, p_next, next](const ContinuationPoint<System>& a,
+                                                  const ContinuationPoint<System>& b) mutable {
+          return joins(sys, a, b, p_next, next);
         });
       }
       set_(sys, p0);
