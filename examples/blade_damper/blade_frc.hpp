@@ -17,6 +17,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -27,7 +28,6 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace blade {
@@ -259,9 +259,11 @@ struct FrcSettings {
   /// default) cost 40-50 s per failing orbit here; 8, as the optimal-preload search.
   int max_newton_iterations = 8;
   /// Parts of each branch run at once on their own threads (stickslip::SplitContinuation; 1:
-  /// one Continuation). Each part starts from its own transient and shooting. Default: the
-  /// machine's hardware threads, at most 4.
-  int parts = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 4);
+  /// one Continuation). Each part starts from its own transient and shooting. Default 4, also on
+  /// fewer cores: the cost per point is uneven (twice the average over the resonance), and
+  /// parts of equal frequency range balance better when there are more of them than cores
+  /// (docs/steady_state.md, "Where the 1 N branch ends": 2 cores, 2 parts 7.2 s, 4 parts 6.0 s).
+  int parts = 4;
   /// Restarts past a stall: when a branch ends with step_too_small short of f_hi (a nonsmooth
   /// point the corrector cannot pass, docs/steady_state.md), a new segment starts from its own
   /// transient and shooting at restart_gap (a fraction of the range) beyond the farthest point
@@ -642,8 +644,10 @@ struct PeriodTipObserver : stickslip::NullObserver {
   bool on_sample(double t, const X& x, const M& m) { return on_step(t, x, m); }
 };
 
-/// FrcSettings::restarts: after a branch that stalled (step_too_small) short of f_hi, restarts
-/// at restart_gap (x range) beyond the farthest frequency computed or tried so far. Each first
+/// FrcSettings::restarts: after a branch that ended short of f_hi (step_too_small, or parts it
+/// never reached), restarts at restart_gap (x range) beyond the farthest frequency of the branch
+/// or tried so far, past the spans of the segments already computed (a part's, a restart's),
+/// each new segment ending where the next known one starts. Each first
 /// looks at the response: Poincaré sections (stickslip::poincare_sections) after a transient
 /// from rest of 3 x transient_periods periods, 32 sections, k <= 8, tolerance 1e-6. Period k:
 /// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits shot
@@ -656,22 +660,57 @@ struct PeriodTipObserver : stickslip::NullObserver {
 inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
                          const std::function<void(const FrcPoint&)>& progress) {
   int segment = 0;
+  // The frequency span of each segment found so far (the branch, a part it never reached, a
+  // restart's), and the farthest frequency of the branch itself (segment 0): the restarts go on
+  // from there, jump over the spans already computed and end each of their segments at the next
+  // span's start, so that the first gap is filled before the later ones.
+  std::vector<std::array<double, 2>> spans;
+  auto add_span = [&spans](double lo, double hi) { spans.push_back({lo, hi}); };
   double f_far = s.f_lo;  // the farthest frequency reached or tried
-  for (const FrcPoint& f : b.points) {
-    segment = std::max(segment, f.segment);
-    f_far = std::max(f_far, f.omega / (2 * M_PI));
+  {
+    std::vector<std::array<double, 2>> by_segment;
+    for (const FrcPoint& f : b.points) {
+      const double hz = f.omega / (2 * M_PI);
+      segment = std::max(segment, f.segment);
+      const auto k = static_cast<std::size_t>(f.segment);
+      if (by_segment.size() <= k) by_segment.resize(k + 1, {HUGE_VAL, -HUGE_VAL});
+      by_segment[k] = {std::min(by_segment[k][0], hz), std::max(by_segment[k][1], hz)};
+      if (f.segment == 0) f_far = std::max(f_far, hz);
+    }
+    for (const auto& sp : by_segment)
+      if (sp[0] <= sp[1]) add_span(sp[0], sp[1]);
   }
-  bool again = b.status == "step_too_small";
+  auto beyond = [&spans](double f) {  // f moved past every span that holds it
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const auto& sp : spans)
+        if (f >= sp[0] && f < sp[1]) {
+          f = sp[1];
+          moved = true;
+        }
+    }
+    return f;
+  };
+  auto next_start = [&spans, &s](double f) {  // the first span that starts beyond f, or f_hi
+    double n = s.f_hi;
+    for (const auto& sp : spans)
+      if (sp[0] > f) n = std::min(n, sp[0]);
+    return n;
+  };
+  const double gap = s.restart_gap * (s.f_hi - s.f_lo);
+  f_far = beyond(f_far);
+  bool again = b.status != "max_points" && f_far + gap < s.f_hi;
   for (int r = 0; r < s.restarts && again; ++r) {
     FrcSettings sr = s;
-    sr.f_lo = f_far + s.restart_gap * (s.f_hi - s.f_lo);
+    sr.f_lo = beyond(f_far + gap);
+    sr.f_hi = next_start(sr.f_lo);
     sr.parts = 1;
     sr.restarts = 0;
     // Next to a stall the response is near a resonance or a change of regime: a longer transient
     // and more Newton iterations for the start than at f_lo.
     sr.transient_periods = 3 * s.transient_periods;
     sr.max_newton_iterations = std::max(s.max_newton_iterations, 20);
-    if (!(sr.f_lo < s.f_hi)) break;
+    if (!(sr.f_lo < sr.f_hi)) break;
     const double f_prev = f_far;
     f_far = sr.f_lo;  // a restart that finds no orbit here makes the next one try a gap further
     ++b.restarts;
@@ -732,17 +771,27 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
       if (progress) progress(g);
     }, &sections);
     if (!next.points.empty()) ++segment;
+    double seg_lo = HUGE_VAL, seg_hi = -HUGE_VAL;
     for (FrcPoint f : next.points) {
       f.segment = segment;
       b.points.push_back(f);
-      f_far = std::max(f_far, f.omega / (2 * M_PI));
+      const double hz = f.omega / (2 * M_PI);
+      f_far = std::max(f_far, hz);
+      seg_lo = std::min(seg_lo, hz);
+      seg_hi = std::max(seg_hi, hz);
     }
+    if (seg_lo <= seg_hi) add_span(seg_lo, seg_hi);
+    // A segment that reached the next span's start goes on beyond that span.
+    if (next.status == "completed" && sr.f_hi < s.f_hi) f_far = std::max(f_far, sr.f_hi);
+    f_far = beyond(f_far);
     b.status = next.status;
     b.message = next.message;
     b.cpu_seconds += next.cpu_seconds;
     b.wall_seconds += next.wall_seconds;
-    again = next.status == "step_too_small" || next.status == "start_failed" ||
-            (sr.period_multiple > 1 && next.status == "max_points");  // (its short stretch ended)
+    again = (next.status == "step_too_small" || next.status == "start_failed" ||
+             (sr.period_multiple > 1 && next.status == "max_points") ||  // (its short stretch ended)
+             (next.status == "completed" && sr.f_hi < s.f_hi)) &&
+            f_far + gap < s.f_hi;
   }
 }
 

@@ -104,9 +104,10 @@ Usage: blade_damper [options]
   --frc-newton n         (after --frc) Newton iterations of each branch's start orbit
                          (default 8)
   --frc-parts n          (after --frc) each branch in n parts at once, one thread each
-                         (stickslip::SplitContinuation; default: the hardware
-                         threads, at most 4; 1: one Continuation); a part the
-                         branch never reached is written as a separate segment
+                         (stickslip::SplitContinuation; default 4, also on fewer
+                         cores: it balances the uneven cost per point; 1: one
+                         Continuation); a part the branch never reached is written
+                         as a separate segment
   --frc-restarts n       (after --frc) after a branch stalls short of f_hi (a
                          nonsmooth point, or where the period-1 orbit turns
                          unstable), look 1 % of the range beyond it: Poincare
