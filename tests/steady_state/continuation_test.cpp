@@ -340,6 +340,29 @@ TEST(SplitContinuation, LinearTwoDofCurveInPartsUpAndDownIsTheReceptanceWithEver
   expect_receptance(two[0], dpts);
 }
 
+// The same curve in two parts with a join tolerance of 1e-5: the chord of the step over the cut
+// misses the next start by ~kappa |dy|^2 / 8, far more than 1e-5 |dy| on this curved branch, so
+// only the fallback joins them: part 0's orbit at the cut, shot from the chord's point there, is
+// the next start's orbit (a linear scene: Newton lands on it to the runs' ~1e-10). The joined
+// branch is still the receptance, without a gap.
+TEST(SplitContinuation, ChordThatMissesTheNextStartJoinsByTheOrbitAtTheCut) {
+  using Sys = ForcedOscillator<2>;
+  std::vector<Sys> systems(2, two_dof_scene());
+  auto split = split_frequency_continuation(systems, 1.2, 2.2, 1.0);
+  split.join_tolerance(1e-5);
+  const auto result = split.run([](Sys&, double) {
+    return stickslip::SplitContinuation<Sys>::Guess{0, 0.0, Sys::State::Zero()};
+  });
+  ASSERT_TRUE(result.completed()) << result.branch.message;
+  EXPECT_TRUE(result.parts[0].joined);
+  EXPECT_EQ(result.parts[0].kept, result.parts[0].points);
+  EXPECT_EQ(result.parts[1].kept, result.parts[1].points);
+  const auto& pts = result.branch.points;
+  for (std::size_t i = 1; i < pts.size(); ++i) EXPECT_GT(pts[i].parameter, pts[i - 1].parameter);
+  expect_no_gap_at_the_joins(result);
+  expect_receptance(systems[0], pts);
+}
+
 // Two parts over [0.91, 1.15], cut at 1.03 between the folds (1.026 and 1.035 by the balance:
 // three orbits there). Part 1's
 // start orbit is picked by its guess, taken from the serial branch's point nearest the cut on each

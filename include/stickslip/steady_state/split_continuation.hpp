@@ -69,7 +69,10 @@ struct SplitContinuationResult {
 /// each part. Points compare on part k + 1's section t0: where part k's section moved
 /// (ContinuationOptions::section_margin moved it away from an event), the two points of its
 /// crossing step are carried there by a plain run each (of less than a period, on part k's
-/// system) before the test.
+/// system) before the test. Where the step's chord misses part k + 1's start (a kink of the
+/// branch at a grazing, where the event sequence changes), part k's orbit at that start's
+/// parameter, shot from the chord's point there, decides: it joins when that orbit lies within
+/// the same tolerance of the start.
 ///
 /// The systems must be independent objects (copies at the same settings): `set_parameter`,
 /// `start` and the start_mode rule are called for part k with systems[k] on part k's thread.
@@ -146,19 +149,20 @@ class SplitContinuation {
     Vector y0, y1;
     Scalar t0 = 0;  // the section of both (a part whose second point moved it has no head)
   };
-  // (x_P, p) of a point, x_P the periodic components of ShootingOptions.
-  Vector pack(const ContinuationPoint<System>& pt) const {
-    const std::vector<Eigen::Index> P = shooting_.periodic_indices(pt.orbit.x0.size());
+  // (x_P, p) of a state at parameter p, x_P the periodic components of ShootingOptions.
+  Vector pack(const State& x, Scalar p) const {
+    const std::vector<Eigen::Index> P = shooting_.periodic_indices(x.size());
     Vector y(static_cast<Eigen::Index>(P.size()) + 1);
-    for (std::size_t k = 0; k < P.size(); ++k) y[static_cast<Eigen::Index>(k)] = pt.orbit.x0[P[k]];
-    y[y.size() - 1] = pt.parameter;
+    for (std::size_t k = 0; k < P.size(); ++k) y[static_cast<Eigen::Index>(k)] = x[P[k]];
+    y[y.size() - 1] = p;
     return y;
   }
-  // (x_P, p) of a point on the section t0: its own when its orbit is there, else the state a plain
-  // run of the shift (t0 - its t0, modulo its period) from its own section reaches, on `sys` at
-  // the point's parameter (the forcing repeats every period: the same orbit, seen at t0). False
-  // when that run fails.
-  bool pack_on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0, Vector& y) const;
+  Vector pack(const ContinuationPoint<System>& pt) const { return pack(pt.orbit.x0, pt.parameter); }
+  // The state and mode of a point's orbit on the section t0: its own when the orbit is there,
+  // else where a plain run of the shift (t0 - its t0, modulo its period) from its own section
+  // ends, on `sys` at the point's parameter (the forcing repeats every period: the same orbit,
+  // seen at t0). False when that run fails.
+  bool on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0, State& x, Mode& m) const;
   // Does the step (a, b) of a part (on `sys`, left at b's parameter) run into the next part's
   // start?
   bool joins(System& sys, const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
@@ -175,27 +179,21 @@ class SplitContinuation {
 };
 
 template <class System>
-bool SplitContinuation<System>::pack_on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0,
-                                                Vector& y) const {
-  if (pt.orbit.t0 == t0) {
-    y = pack(pt);
-    return true;
-  }
+bool SplitContinuation<System>::on_section(System& sys, const ContinuationPoint<System>& pt, Scalar t0, State& x,
+                                           Mode& m) const {
+  x = pt.orbit.x0;
+  m = pt.orbit.mode;
+  if (pt.orbit.t0 == t0) return true;
   using std::fmod;
   const Scalar T = pt.orbit.period;
   Scalar shift = fmod(t0 - pt.orbit.t0, T);
   if (shift < 0) shift += T;
-  if (!(shift > 0)) {  // t0 and the orbit's section differ by whole periods
-    y = pack(pt);
-    return true;
-  }
+  if (!(shift > 0)) return true;  // t0 and the orbit's section differ by whole periods
   set_(sys, pt.parameter);
   const PeriodRun<System> r = run_period(sys, pt.orbit.mode, pt.orbit.t0, pt.orbit.x0, shift, shooting_, false);
   if (!r.ok()) return false;
-  ContinuationPoint<System> moved;
-  moved.parameter = pt.parameter;
-  moved.orbit.x0 = r.x_end;
-  y = pack(moved);
+  x = r.x_end;
+  m = r.mode_end;
   return true;
 }
 
@@ -209,18 +207,35 @@ bool SplitContinuation<System>::joins(System& sys, const ContinuationPoint<Syste
   if (!head.valid) return false;
   // (x_P, p) compare on one section: where Continuation moved this part's section away from an
   // event (ContinuationOptions::section_margin), a and b are carried to the next part's by a
-  // plain run each (the system is then set back to b's parameter, where the part goes on).
-  Vector ya, yb;
-  const bool carried = !(a.orbit.t0 == head.t0 && b.orbit.t0 == head.t0);
-  const bool packed = pack_on_section(sys, a, head.t0, ya) && pack_on_section(sys, b, head.t0, yb);
-  if (carried) set_(sys, b.parameter);
-  if (!packed) return false;
-  const Vector d = yb - ya;
+  // plain run each. The system is set back to b's parameter, where the part goes on.
+  State xa, xb;
+  Mode ma{}, mb{};
+  const bool moved = !(a.orbit.t0 == head.t0 && b.orbit.t0 == head.t0);
+  auto done = [&](bool joined) {
+    if (moved) set_(sys, b.parameter);
+    return joined;
+  };
+  if (!on_section(sys, a, head.t0, xa, ma) || !on_section(sys, b, head.t0, xb, mb)) return done(false);
+  const Vector ya = pack(xa, a.parameter), d = pack(xb, b.parameter) - ya;
   const Scalar len2 = d.squaredNorm();
-  if (!(len2 > 0) || !(d.dot(head.y1 - head.y0) > 0)) return false;
+  if (!(len2 > 0) || !(d.dot(head.y1 - head.y0) > 0)) return done(false);
   using std::sqrt;
+  const Scalar tol = join_tol_ * sqrt(len2);
   const Scalar s = std::clamp((head.y0 - ya).dot(d) / len2, Scalar(0), Scalar(1));
-  return (ya + s * d - head.y0).norm() <= join_tol_ * sqrt(len2);
+  if ((ya + s * d - head.y0).norm() <= tol) return done(true);
+  // The chord of a step over a kink of the branch (a phase born at a grazing, where the orbits'
+  // event sequence changes) can miss the next start by more than the tolerance although both lie
+  // on one branch: then the orbit of this part's branch at p_next decides, shot from the chord's
+  // point there (it converges to the next start's orbit only when both are on one sheet).
+  const Scalar sp = std::clamp((p_next - a.parameter) / (b.parameter - a.parameter), Scalar(0), Scalar(1));
+  const State xg = xa + sp * (xb - xa);
+  set_(sys, p_next);
+  const Mode guess_mode = start_mode_ ? start_mode_(sys, head.t0, xg, sp < Scalar(0.5) ? ma : mb)
+                                      : (sp < Scalar(0.5) ? ma : mb);
+  Shooting<System> shooting(sys, shooting_);
+  const PeriodicOrbit<System> orbit = shooting.forced(guess_mode, head.t0, xg, period_(p_next));
+  set_(sys, b.parameter);
+  return orbit.ok() && (pack(orbit.x0, p_next) - head.y0).norm() <= tol;
 }
 
 template <class System>
