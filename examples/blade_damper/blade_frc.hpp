@@ -665,7 +665,6 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
   // from there, jump over the spans already computed and end each of their segments at the next
   // span's start, so that the first gap is filled before the later ones.
   std::vector<std::array<double, 2>> spans;
-  auto add_span = [&spans](double lo, double hi) { spans.push_back({lo, hi}); };
   double f_far = s.f_lo;  // the farthest frequency reached or tried
   {
     std::vector<std::array<double, 2>> by_segment;
@@ -678,7 +677,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
       if (f.segment == 0) f_far = std::max(f_far, hz);
     }
     for (const auto& sp : by_segment)
-      if (sp[0] <= sp[1]) add_span(sp[0], sp[1]);
+      if (sp[0] <= sp[1]) spans.push_back(sp);
   }
   auto beyond = [&spans](double f) {  // f moved past every span that holds it
     for (bool moved = true; moved;) {
@@ -780,7 +779,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
       seg_lo = std::min(seg_lo, hz);
       seg_hi = std::max(seg_hi, hz);
     }
-    if (seg_lo <= seg_hi) add_span(seg_lo, seg_hi);
+    if (seg_lo <= seg_hi) spans.push_back({seg_lo, seg_hi});
     // A segment that reached the next span's start goes on beyond that span.
     if (next.status == "completed" && sr.f_hi < s.f_hi) f_far = std::max(f_far, sr.f_hi);
     f_far = beyond(f_far);

@@ -726,6 +726,13 @@ PyOrbit to_py(const PeriodicOrbit<System>& orbit) {
   return out;
 }
 
+/// The periodic components the steady-state functions compare by default: q, q', x_d, x_d'
+/// (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor the audit
+/// integrals.
+std::vector<Index> default_periodic(const System& system) {
+  return ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+}
+
 /// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
 /// x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a neutral direction) nor the energy
 /// quadratures (docs/steady_state.md).
@@ -741,7 +748,7 @@ ShootingOptions<double> shooting_options(const System& system, const std::option
   else if (monodromy != "variational")
     throw std::invalid_argument(where + ": monodromy must be 'variational' or 'finite_difference', got '" + monodromy +
                                 "'");
-  opt.periodic = periodic ? *periodic : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+  opt.periodic = periodic ? *periodic : default_periodic(system);
   return opt;
 }
 
@@ -755,6 +762,14 @@ struct PyContinuationPoint {
 /// The C++ point as PyContinuationPoint (no Python objects).
 PyContinuationPoint to_py(const ContinuationPoint<System>& pt) {
   return PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)};
+}
+
+/// The C++ points of a branch as PyContinuationPoints.
+std::vector<PyContinuationPoint> to_py(const std::vector<ContinuationPoint<System>>& points) {
+  std::vector<PyContinuationPoint> out;
+  out.reserve(points.size());
+  for (const auto& pt : points) out.push_back(to_py(pt));
+  return out;
 }
 
 /// One part of continue_orbits(parts = n > 1) (SplitContinuation's ContinuationPart).
@@ -991,13 +1006,11 @@ void bind_steady_state(py::module_& m) {
           });
           out.status = result.branch.status;
           out.message = result.branch.message;
-          for (const auto& pt : result.branch.points) out.points.push_back(to_py(pt));
+          out.points = to_py(result.branch.points);
           for (std::size_t k = 0; k < result.parts.size(); ++k) {
             const auto& r = result.parts[k];
-            PyContinuationPart part{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined, r.cpu_seconds,
-                                    {}};
-            for (const auto& pt : result.dropped[k].points) part.dropped.push_back(to_py(pt));
-            out.parts.push_back(std::move(part));
+            out.parts.push_back(PyContinuationPart{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined,
+                                                   r.cpu_seconds, to_py(result.dropped[k].points)});
           }
           return out;
         }
@@ -1010,7 +1023,7 @@ void bind_steady_state(py::module_& m) {
         const auto result = cont.run(md, t0, x, p0);
         out.status = result.status;
         out.message = result.message;
-        for (const auto& pt : result.points) out.points.push_back(to_py(pt));
+        out.points = to_py(result.points);
         return out;
       },
       py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,
@@ -1060,8 +1073,7 @@ void bind_steady_state(py::module_& m) {
         opt.record_periods = record_periods;
         opt.max_period = max_period;
         opt.tolerance = tolerance;
-        opt.periodic = periodic ? *periodic
-                                : ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+        opt.periodic = periodic ? *periodic : default_periodic(system);
         opt.stepper.rtol = rtol;
         opt.stepper.atol = atol;
         const State x = x0 ? *x0 : system.initial_state();
