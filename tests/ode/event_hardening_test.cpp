@@ -159,6 +159,25 @@ TEST(TimeResolution, FixedStepBelowTheResolutionOfTIsRejected) {
   EXPECT_TRUE(stepper.integrate(0, 1e3, Eigen::Vector2d(1.0, 0.0), 1e3 + 1e-4).ok());
 }
 
+// rtol = atol = 1e-300: the error scale atol + rtol |x| underflows to 0, both norms of the
+// starting-step estimate are infinite and their ratio NaN; a NaN step is never below min_step,
+// so every step was rejected at t = 0 until max_steps (1e8 by default: about a minute on this
+// oscillator, found through the steady-state layer). The run must end at once with
+// StepSizeUnderflow naming the time.
+TEST(TimeResolution, TolerancesWhoseScaleUnderflowsEndWithStepSizeUnderflowNotALoop) {
+  stickslip::test::Oscillator osc;
+  StepperOptions<double> opt;
+  opt.rtol = 1e-300;
+  opt.atol = 1e-300;
+  HybridStepper<stickslip::test::Oscillator, DormandPrince54> stepper(osc, opt);
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = stepper.integrate(0, 0.0, Eigen::Vector2d(1.0, 0.0), 1.0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_EQ(r.status, stickslip::Status::StepSizeUnderflow) << r.message;
+  EXPECT_LT(r.stats.rejected_steps, 200);  // halvings from 1e-6 down to min_step 1e-14: ~30
+  EXPECT_NE(r.message.find("at t = 0"), std::string::npos) << r.message;
+}
+
 TEST(TimeResolution, AdaptiveStepBelowTheResolutionOfTStillAdvancesTheClock) {
   // An initial step of 1e-6 at t = 1e17 (ulp 16) left t standing while the state moved (h grew
   // x5 per step until t + h rounded up: ~10 time units of motion at a frozen clock, a phase

@@ -1071,7 +1071,9 @@ template <class System>
 template <class Observer>
 auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0, Scalar t_end,
                                            Observer& obs) -> Result {
-  detail::check_run_arguments("ExactLinearStepper::integrate", t0, x0, t_end);
+  static const std::string where = "ExactLinearStepper::integrate";
+  detail::check_run_arguments(where, t0, x0, t_end);
+  detail::check_sample_times(where, t0, t_end, opt_);
 
   Result r;
   StepperStats& st = r.stats;
@@ -1108,12 +1110,21 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
     Scalar t1 = 0, err = 0;
     jumped = false;
     bool slip_cleared = false;
+    // No step below min_step * max(1, |t|) short of t_end: t + h would not resolve it (the
+    // guard sampling step of a stiff mode far out in t), and a run of such steps would spin
+    // until max_steps with a clock that does not advance.
+    const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t_));
     if (exact_) {
       Scalar hs = delta_;
       t1 = t_ + hs;
       if (!(t_end - t1 > Scalar(0.01) * hs)) {
         t1 = t_end;
         hs = t_end - t_;
+      } else if (!(hs >= hmin)) {
+        return finish(r, Status::StepSizeUnderflow, t_, x_, mode,
+                      "guard sampling step " + detail::short_number(hs) +
+                          " of the exact mode fell below min_step " + detail::short_number(hmin) +
+                          " " + detail::at_time(t_));
       }
       const int level = hs == delta_ ? choose_jump(t_end) : 0;
       const bool grid = hs == delta_ && flow_.has_ladder();
@@ -1157,8 +1168,11 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       if (t_end - t1 <= Scalar(0.01) * h) {
         t1 = t_end;
         h = t_end - t_;
+      } else if (!(h >= hmin)) {
+        return finish(r, Status::StepSizeUnderflow, t_, x_, mode,
+                      "step size " + detail::short_number(h) + " fell below min_step " +
+                          detail::short_number(hmin) + " " + detail::at_time(t_));
       }
-      const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t_));
       err = lawson_.step(
           flow_,
           [&](Scalar tt, const Vector& y, Vector& out) { return remainder(mode, tt, y, out, st); },

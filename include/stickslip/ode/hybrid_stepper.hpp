@@ -188,24 +188,7 @@ void HybridStepper<System, Method>::check_time_resolution(Scalar t0, Scalar t_en
                                 "], or t + h does not resolve the step",
                             opt_.fixed_step);
   }
-  const Scalar dt = opt_.output_interval;
-  if (!(dt > 0)) return;
-  const Scalar resolution = Scalar(4) * std::numeric_limits<Scalar>::epsilon() * t_max;
-  if (!(dt > resolution))
-    detail::throw_invalid(where,
-                          "options.output_interval must exceed the time resolution 4 eps |t| = " +
-                              detail::format_value(resolution) + " at |t| = " +
-                              detail::format_value(t_max) +
-                              ", or the sample times t0 + k dt do not advance",
-                          dt);
-  const Scalar samples = std::floor((t_end - t0) / dt) + Scalar(1);
-  if (!(samples <= static_cast<Scalar>(opt_.max_samples)))
-    detail::throw_invalid(where,
-                          "options.output_interval asks for " + detail::format_value(samples) +
-                              " samples over [t0, t_end] = [" + detail::format_value(t0) + ", " +
-                              detail::format_value(t_end) + "], more than options.max_samples = " +
-                              std::to_string(opt_.max_samples),
-                          dt);
+  detail::check_sample_times(where, t0, t_end, opt_);
 }
 
 template <class System, class Method>
@@ -223,6 +206,9 @@ auto HybridStepper<System, Method>::initial_step(const Mode& m, Scalar t, Scalar
   const Scalar d0 = rms(x_);
   const Scalar d1 = rms(f_);
   Scalar h0 = (d0 < Scalar(1e-5) || d1 < Scalar(1e-5)) ? Scalar(1e-6) : Scalar(0.01) * d0 / d1;
+  // rtol and atol so small that the scale underflows to 0: d0 = d1 = inf, h0 = NaN, and a NaN
+  // step is never below min_step (the run spun until max_steps); start at 1e-6 instead.
+  if (!(h0 > 0 && std::isfinite(h0))) h0 = Scalar(1e-6);
   h0 = std::min(h0, hmax);
   x1_.noalias() = x_ + h0 * f_;
   if (!eval_rhs(m, t + h0, x1_, f1_, st)) return h0;

@@ -11,6 +11,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -28,6 +31,36 @@ void check_run_arguments(const std::string& where, Scalar t0, const State& x0, S
   if (!(t_end >= t0)) throw_invalid(where, "t_end must be >= t0", t_end);
   if (x0.size() == 0) throw_invalid(where, "x0 must not be empty", x0.size());
   if (!x0.allFinite()) throw_invalid(where, "x0 must be finite", x0.transpose());
+}
+
+/// Throws std::invalid_argument("<where>: options.output_interval ...") when samples are asked
+/// for (output_interval > 0) and the sample times t0 + k dt cannot advance at the magnitude of t
+/// (dt <= 4 eps max(|t0|, |t_end|)), or when they would be more than options.max_samples. Shared
+/// by every stepper that emits samples, so that no run loops on samples that never advance or
+/// fills memory with more than the caller allowed.
+template <class Scalar>
+void check_sample_times(const std::string& where, Scalar t0, Scalar t_end,
+                        const StepperOptions<Scalar>& opt) {
+  const Scalar dt = opt.output_interval;
+  if (!(dt > 0)) return;
+  using std::abs;
+  const Scalar t_max = std::max(abs(t0), abs(t_end));
+  const Scalar resolution = Scalar(4) * std::numeric_limits<Scalar>::epsilon() * t_max;
+  if (!(dt > resolution))
+    throw_invalid(where,
+                  "options.output_interval must exceed the time resolution 4 eps |t| = " +
+                      format_value(resolution) + " at |t| = " + format_value(t_max) +
+                      ", or the sample times t0 + k dt do not advance",
+                  dt);
+  using std::floor;
+  const Scalar samples = floor((t_end - t0) / dt) + Scalar(1);
+  if (!(samples <= static_cast<Scalar>(opt.max_samples)))
+    throw_invalid(where,
+                  "options.output_interval asks for " + format_value(samples) +
+                      " samples over [t0, t_end] = [" + format_value(t0) + ", " +
+                      format_value(t_end) + "], more than options.max_samples = " +
+                      std::to_string(opt.max_samples),
+                  dt);
 }
 
 /// Fill r with the outcome of a run and return it.
