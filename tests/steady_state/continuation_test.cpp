@@ -340,6 +340,64 @@ TEST(SplitContinuation, LinearTwoDofCurveInPartsUpAndDownIsTheReceptanceWithEver
   expect_receptance(two[0], dpts);
 }
 
+// 1-DOF oscillator x'' + 0.3 x' + x = cos(w t) over [0.5, 1.5] in 20 parts of 0.05, narrower
+// than the first (and largest) step 0.3: a part's first step crosses the next cut, so parts join
+// on their first step. Such a part must still publish its start and second point for the part
+// before it (it did not: the chain of joins broke, one part computed the branch alone and others
+// ran to the end for nothing). Every part but the last joins, and the branch is the closed form
+// x(t) = Re(H e^{i w t}), H = 1 / (1 - w^2 + 0.3 i w), at t0 = 0 (tolerance as in
+// expect_receptance: the Newton tolerance 1e-9 and the runs' error times |(M - I)^-1| <= ~3 here).
+TEST(SplitContinuation, PartsNarrowerThanTheFirstStepAllJoin) {
+  using Sys = ForcedOscillator<1>;
+  Sys base;
+  base.C(0, 0) = 0.3;
+  std::vector<Sys> systems(20, base);
+  std::vector<Sys*> ptrs;
+  for (Sys& s : systems) ptrs.push_back(&s);
+  stickslip::ContinuationOptions<double> co = frequency_options(0.5, 1.5, 0.3);
+  co.initial_step = 0.3;
+  stickslip::SplitContinuation<Sys> split(ptrs, [](Sys& s, double w) { s.omega = w; },
+                                          [](double w) { return 2 * kPi / w; }, {}, co);
+  const auto result = split.run([](Sys&, double) {
+    return stickslip::SplitContinuation<Sys>::Guess{0, 0.0, Sys::State::Zero()};
+  });
+  ASSERT_TRUE(result.completed()) << result.branch.message;
+  std::size_t computed = 0;
+  for (std::size_t k = 0; k < result.parts.size(); ++k) {
+    EXPECT_EQ(result.parts[k].joined, k + 1 < result.parts.size()) << "part " << k;
+    computed += result.parts[k].points;
+  }
+  const auto& pts = result.branch.points;
+  EXPECT_EQ(pts.size(), computed);  // nothing computed for nothing
+  for (std::size_t i = 1; i < pts.size(); ++i) EXPECT_GT(pts[i].parameter, pts[i - 1].parameter);
+  EXPECT_GT(pts.back().parameter, 1.4);
+  for (const auto& pt : pts) {
+    const double w = pt.parameter;
+    const cd H = 1.0 / cd(1 - w * w, 0.3 * w);
+    EXPECT_NEAR(pt.orbit.x0[0], H.real(), 1e-7) << "omega " << w;
+    EXPECT_NEAR(pt.orbit.x0[1], -w * H.imag(), 1e-7) << "omega " << w;
+  }
+}
+
+// The user's period is defined on the declared range only (NaN above 2.2, as a table lookup
+// would be): the start at 2.2 - 1e-9 and every corrector take dG/dp one-sided there instead of
+// a run at T(p + h) = NaN, which threw std::invalid_argument out of run(). The branch down to
+// 1.8 is the receptance.
+TEST(SteadyStateContinuation, PeriodUndefinedJustOutsideTheRangeIsNotEvaluated) {
+  using Sys = ForcedOscillator<2>;
+  Sys sys = two_dof_scene();
+  stickslip::ContinuationOptions<double> co = frequency_options(1.8, 2.2, 0.1);
+  co.direction = -1;
+  stickslip::Continuation<Sys> cont(
+      sys, [](Sys& s, double w) { s.omega = w; },
+      [](double w) { return w <= 2.2 ? 2 * kPi / w : std::nan(""); }, {}, co);
+  const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 2.2 - 1e-9);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  ASSERT_GE(branch.points.size(), 3u);
+  EXPECT_LT(branch.points.back().parameter, 1.9);
+  expect_receptance(sys, branch.points);
+}
+
 // The same curve in two parts with a join tolerance of 1e-5: the chord of the step over the cut
 // misses the next start by ~kappa |dy|^2 / 8, far more than 1e-5 |dy| on this curved branch, so
 // only the fallback joins them: part 0's orbit at the cut, shot from the chord's point there, is

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <string>
 
 namespace steady_state_inputs_test {
@@ -177,6 +178,86 @@ TEST(SteadyStateInputs, FloquetClassificationOfKnownSpectra) {
   ASSERT_EQ(autonomous.multipliers.size(), 2);
   EXPECT_NEAR(autonomous.multipliers[0].real(), -0.7, 1e-15);
   EXPECT_TRUE(autonomous.stable);
+}
+
+
+// Found by a probe of the steady-state layer (2026-11-25). A first orbit run that fails reports
+// the guess as its last iterate (x0 and period were left unset: uninitialised memory for a
+// fixed-size state).
+TEST(SteadyStateInputs, FailedFirstRunReportsTheGuessAsTheLastIterate) {
+  Linear1 sys;
+  sys.C(0, 0) = 0.1;
+  auto o = stickslip::ShootingOptions<double>();
+  o.stepper.max_steps = 5;
+  stickslip::Shooting<Linear1> shooting(sys, o);
+  const Linear1::State guess(0.25, -0.5);
+  const auto orbit = shooting.forced(0, 0.0, guess, 2 * kPi);
+  EXPECT_EQ(orbit.status, stickslip::ShootingStatus::IntegrationFailed);
+  EXPECT_EQ(orbit.x0, guess);
+  EXPECT_EQ(orbit.period, 2 * kPi);
+  EXPECT_EQ(orbit.iterations, 1);
+  EXPECT_NE(orbit.message.find("max_steps"), std::string::npos) << orbit.message;
+}
+
+// At t0 = 1e17 a period of 4.8 is below the time resolution (ulp 16): t0 + T rounds to t0, the
+// "period" run returned its start and every guess closed (Converged at (5, 0); the orbit's
+// amplitude is 1 / |1 - w^2 + i c w| = 1.42). Refused, naming the period, by Shooting,
+// run_period and poincare_sections; at t0 = 1e3 the same shooting finds the closed form.
+TEST(SteadyStateInputs, PeriodBelowTheTimeResolutionAtT0IsRefused) {
+  Linear1 sys;
+  sys.C(0, 0) = 0.1;
+  sys.omega = 1.3;
+  const double T = 2 * kPi / sys.omega;
+  const Linear1::State guess(5.0, 0.0);
+  auto o = stickslip::ShootingOptions<double>();
+  o.samples_per_period = 0;
+  stickslip::Shooting<Linear1> shooting(sys, o);
+  expect_invalid_argument([&] { shooting.forced(0, 1e17, guess, T); },
+                          {"Shooting", "period", "min_step", "resolve"});
+  expect_invalid_argument([&] { stickslip::run_period(sys, 0, 1e17, guess, T, o, false); },
+                          {"run_period", "T", "min_step"});
+  stickslip::PoincareOptions<double> po;
+  expect_invalid_argument([&] { stickslip::poincare_sections(sys, 0, 1e17, guess, T, po); },
+                          {"poincare_sections", "T", "min_step"});
+  const auto orbit = shooting.forced(0, 1e3, guess, T);
+  ASSERT_TRUE(orbit.ok()) << orbit.message;
+  const double amplitude = 1 / std::abs(std::complex<double>(1 - 1.69, 0.13));
+  EXPECT_NEAR(std::hypot(orbit.x0[0], orbit.x0[1] / sys.omega), amplitude, 1e-6 * amplitude);
+}
+
+// A damped, unforced linear oscillator has no periodic orbit but its equilibrium, which closes
+// for any period: autonomous shooting from (1, 0) walked to x0 ~ 3e-12 and reported it
+// Converged with the period guess. Now NoConvergence naming the equilibrium.
+TEST(SteadyStateInputs, AutonomousShootingOntoAnEquilibriumIsNoOrbit) {
+  Linear1 sys;
+  sys.C(0, 0) = 0.1;
+  sys.f.setZero();
+  stickslip::Shooting<Linear1> shooting(sys);
+  for (double guess : {6.0, 3.0}) {
+    const auto orbit = shooting.autonomous(0, Linear1::State(1.0, 0.0), guess);
+    EXPECT_EQ(orbit.status, stickslip::ShootingStatus::NoConvergence) << "T guess " << guess;
+    EXPECT_NE(orbit.message.find("equilibrium"), std::string::npos) << orbit.message;
+  }
+}
+
+TEST(SteadyStateInputs, FloquetMultipliersRejectBadMatricesAndTolerances) {
+  using M = Eigen::MatrixXd;
+  const M good = Eigen::Vector2d(0.5, 0.2).asDiagonal().toDenseMatrix();
+  M nan = good;
+  nan(1, 0) = std::nan("");
+  M inf = good;
+  inf(0, 1) = HUGE_VAL;
+  expect_invalid_argument([&] { stickslip::floquet_multipliers<double>(nan, false, 1e-9); },
+                          {"floquet_multipliers", "M", "finite"});
+  expect_invalid_argument([&] { stickslip::floquet_multipliers<double>(inf, false, 1e-9); },
+                          {"floquet_multipliers", "M", "finite"});
+  expect_invalid_argument([&] { stickslip::floquet_multipliers<double>(M(2, 3), false, 1e-9); },
+                          {"floquet_multipliers", "square"});
+  expect_invalid_argument([&] { stickslip::floquet_multipliers<double>(good, false, -1.0); },
+                          {"floquet_multipliers", "tolerance"});
+  expect_invalid_argument([&] { stickslip::floquet_multipliers<double>(good, false, std::nan("")); },
+                          {"floquet_multipliers", "tolerance"});
+  EXPECT_TRUE(stickslip::floquet_multipliers<double>(good, false, 0.0).stable);
 }
 
 }  // namespace

@@ -198,8 +198,9 @@ class Continuation {
   /// is periodic when the run ends in the mode so decided.
   void start_mode(StartMode rule) { start_mode_ = std::move(rule); }
 
-  /// Ask `rule(last, next)` after each corrected point inside the range: true ends the run with
-  /// status Stopped before `next` is added (SplitContinuation joins its parts so).
+  /// Ask `rule(last, next)` after each corrected point, the first one beyond the range too (the
+  /// step that leaves it): true ends the run with status Stopped before `next` is added
+  /// (SplitContinuation joins its parts so); false beyond the range ends it Completed.
   void stop_when(StopRule rule) { stop_ = std::move(rule); }
 
   /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)).
@@ -284,8 +285,21 @@ template <class System>
 bool Continuation<System>::parameter_derivative(const Mode& mode, Scalar t0, const State& x,
                                                 Scalar p, Vector& gp, std::string& why) {
   const Scalar h = shooting_.options().fd_step * std::max(Scalar(1), std::abs(p));
-  const PeriodRun<System> plus = shoot(mode, t0, x, p + h, false);
-  const PeriodRun<System> minus = shoot(mode, t0, x, p - h, false);
+  // One-sided where T(p +- h) is not a period (p at the end of T's domain, e.g. T(p) = p near
+  // p = 0): the difference stays inside the domain instead of a run_period that throws.
+  const auto has_period = [&](Scalar q) {
+    const Scalar T = period_(q);
+    return detail::is_finite(q) && detail::is_finite(T) && T > 0;
+  };
+  const bool up = has_period(p + h), down = has_period(p - h);
+  if (!up && !down) {
+    why = "the period T(p) is not finite and > 0 at p +- " + detail::format_value(h) +
+          " (p = " + detail::format_value(p) + ")";
+    return false;
+  }
+  const Scalar hp = up ? h : Scalar(0), hm = down ? h : Scalar(0);
+  const PeriodRun<System> plus = shoot(mode, t0, x, p + hp, false);
+  const PeriodRun<System> minus = shoot(mode, t0, x, p - hm, false);
   set_(sys_, p);
   if (!plus.ok() || !minus.ok()) {
     why = "orbit run at p +- " + detail::format_value(h) + " failed: " +
@@ -295,7 +309,7 @@ bool Continuation<System>::parameter_derivative(const Mode& mode, Scalar t0, con
   Vector rp, rm;
   shooting_.residual(plus.x_end, x, rp);
   shooting_.residual(minus.x_end, x, rm);
-  gp = (rp - rm) / (Scalar(2) * h);
+  gp = (rp - rm) / (hp + hm);
   return true;
 }
 
@@ -507,17 +521,25 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       }
       continue;
     }
-    if (p_new < opt_.parameter_min || p_new > opt_.parameter_max) {
+    // A point beyond the range ends the branch (Completed, the point not kept), but the stop
+    // rule sees that last step too: it may cross what the rule looks for inside the range (a
+    // SplitContinuation part whose last step passes both the next part's start and the end).
+    const bool outside = p_new < opt_.parameter_min || p_new > opt_.parameter_max;
+    if (outside && !stop_) {
       set_(sys_, p);
       return result;
     }
     const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
-    const Scalar shift = section_shift(next, period_(p_new));
+    const Scalar shift = outside ? Scalar(0) : section_shift(next, period_(p_new));
     ContinuationPoint<System> point{p_new, std::move(next), ds, changed};
     if (stop_ && stop_(result.points.back(), point)) {
       set_(sys_, p);
       result.status = ContinuationStatus::Stopped;
       result.message = "the stop rule ended the branch after p = " + detail::format_value(p);
+      return result;
+    }
+    if (outside) {
+      set_(sys_, p);
       return result;
     }
     Vector y_last = pack(x, p);

@@ -3,6 +3,8 @@
 /// \brief Floquet multipliers of a periodic orbit (eigenvalues of its monodromy matrix), its
 /// stability and the kind of instability.
 
+#include <stickslip/detail/validate.hpp>
+
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
@@ -10,6 +12,8 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 
 namespace stickslip {
 
@@ -53,11 +57,19 @@ struct FloquetMultipliers {
 /// orbit the eigenvalue nearest to 1 is the trivial one (perturbation along the orbit) and is
 /// reported apart. Stable when every other |mu| <= 1 + tolerance; otherwise the leading
 /// multiplier gives the instability kind (imaginary part above `tolerance`: Neimark-Sacker).
+/// Throws std::invalid_argument when M is not square or not finite, or tolerance is negative or
+/// not finite.
 template <class Scalar>
 FloquetMultipliers<Scalar> floquet_multipliers(
     const Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>& M, bool autonomous,
     Scalar tolerance) {
   using Complex = std::complex<Scalar>;
+  static const std::string where = "floquet_multipliers";
+  if (M.rows() != M.cols())
+    detail::throw_invalid(where, "M must be square (it has " + std::to_string(M.rows()) + " rows)",
+                          M.cols());
+  if (!detail::all_finite(M)) throw std::invalid_argument(where + ": M must be finite");
+  detail::require_non_negative(where, "tolerance", tolerance);
   FloquetMultipliers<Scalar> r;
   if (M.size() == 0) return r;
   const Eigen::EigenSolver<Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>> es(M, false);

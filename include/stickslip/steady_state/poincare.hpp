@@ -108,6 +108,9 @@ PoincareSections<System> poincare_sections(System& system, const typename System
   if (x0.size() == 0) throw std::invalid_argument(where + ": x0 must not be empty");
   if (!detail::all_finite(x0)) throw std::invalid_argument(where + ": x0 must be finite");
   options.validate(where, x0.size());
+  detail::require_resolved_period(
+      where, "T", t0, T, options.stepper.min_step,
+      Scalar(options.transient_periods + options.record_periods + 1) * T);
   std::vector<Eigen::Index> P = options.periodic;
   if (P.empty()) P = ShootingOptions<Scalar>::first(x0.size());
 

@@ -205,6 +205,11 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.residual = residual;
   o.iterations = iterations;
   o.monodromy = periodic_block(run.monodromy);
+  if (!detail::all_finite(o.monodromy)) {
+    o.status = ShootingStatus::IntegrationFailed;
+    o.message = "the monodromy matrix of the closing run is not finite (its variational run blew up)";
+    return o;
+  }
   o.floquet = floquet_multipliers<Scalar>(o.monodromy, autonomous, opt_.multiplier_tolerance);
   o.amplitudes = run.amplitudes;
   o.events = run.events;
@@ -232,6 +237,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
   detail::require_finite(where, "t0", t0);
   detail::require_positive(where, "period", period);
   opt_.validate(where, n);
+  detail::require_resolved_period(where, "period", t0, period, opt_.stepper.min_step);
 
   const auto P = opt_.periodic_indices(n);
   const auto p = static_cast<Eigen::Index>(P.size());
@@ -241,11 +247,15 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
   Vector r, rhs(m), dy(m);
   Matrix J(m, m);
   State f0 = x0, fT = x0;
-  Orbit failed;
+  Orbit failed;  // the last Newton iterate, also when the first run fails
   failed.t0 = t0;
   failed.mode = mode;
+  failed.x0 = x0;
+  failed.period = period;
   int runs = 0;
   auto run_failed = [&](const PeriodRun<System>& run, int it) {
+    failed.iterations = runs;
+    failed.stats = run.stats;
     failed.status = ShootingStatus::IntegrationFailed;
     failed.message = "orbit run of Newton iteration " + std::to_string(it) + " failed (" +
                      to_string(run.status) + "): " + run.message;
@@ -261,7 +271,25 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
     failed.iterations = runs;
     failed.stats = run.stats;
     failed.residual = res;
-    if (res <= tolerance_at(x)) return make_orbit(run, mode, t0, x, T, autonomous, res, runs);
+    if (res <= tolerance_at(x)) {
+      if (autonomous) {
+        // An equilibrium closes for any T: the phase condition f(x0)^T dx = 0 is empty there and
+        // the "period" is only the guess. Not an orbit when the flow moves x0 by less than the
+        // tolerance in a period.
+        sys_.rhs(mode, t0, x, f0);
+        Scalar speed = 0;
+        for (Eigen::Index i : P) speed = std::max(speed, std::abs(f0[i]));
+        if (speed * T <= tolerance_at(x)) {
+          failed.status = ShootingStatus::NoConvergence;
+          failed.message = "Newton converged to an equilibrium, not a periodic orbit: max |f_P(x0)| T = " +
+                           detail::format_value(speed * T) + " <= tolerance " +
+                           detail::format_value(tolerance_at(x)) +
+                           " (the phase condition is empty there and the period is undefined)";
+          return failed;
+        }
+      }
+      return make_orbit(run, mode, t0, x, T, autonomous, res, runs);
+    }
     if (it > opt_.max_iterations) {
       failed.status = ShootingStatus::NoConvergence;
       failed.message = "Newton did not converge in " + std::to_string(opt_.max_iterations) +

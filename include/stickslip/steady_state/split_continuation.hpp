@@ -143,7 +143,7 @@ class SplitContinuation {
 
  private:
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
-  // A part's first two points in (x_P, p) (valid: it has two).
+  // A part's start and its first step's corrected point in (x_P, p) (valid: both on one section).
   struct Head {
     bool valid = false;
     Vector y0, y1;
@@ -203,7 +203,7 @@ bool SplitContinuation<System>::joins(System& sys, const ContinuationPoint<Syste
                                       std::shared_future<Head>& next) const {
   const Scalar dir = Scalar(opt_.direction);
   if (!(dir * (a.parameter - p_next) < 0 && dir * (b.parameter - p_next) >= 0)) return false;
-  const Head& head = next.get();  // waits for the next part's first two points
+  const Head& head = next.get();  // waits for the next part's start and its first step
   if (!head.valid) return false;
   // (x_P, p) compare on one section: where Continuation moved this part's section away from an
   // event (ContinuationOptions::section_margin), a and b are carried to the next part's by a
@@ -274,22 +274,24 @@ auto SplitContinuation<System>::run(const StartGuess& start) -> Result {
           head.y0 = pack(pt);
           head.t0 = pt.orbit.t0;
         }
-        if (count == 1) {
-          head.y1 = pack(pt);
-          head.valid = pt.orbit.t0 == head.t0;
-          publish();
-        }
         ++count;
         if (on_point_) on_point_(k, pt);
       });
-      if (k + 1 < n) {
-        const Scalar p_next = start_parameter(k + 1);
-        std::shared_future<Head> next = head_of[k + 1];
-        cont.stop_when([this, &sys, p_next, next](const ContinuationPoint<System>& a,
-                                                  const ContinuationPoint<System>& b) mutable {
-          return joins(sys, a, b, p_next, next);
-        });
-      }
+      // Every part (the last one too) publishes its head at its first step, whether or not that
+      // step joins or leaves the range: a part that joins the next one (cuts narrower than the
+      // step) or ends at once would otherwise leave the part before it unable to join it.
+      const bool last = k + 1 == n;
+      const Scalar p_next = last ? Scalar(0) : start_parameter(k + 1);
+      std::shared_future<Head> next = last ? std::shared_future<Head>() : head_of[k + 1];
+      cont.stop_when([this, &sys, last, p_next, next, &count, &head, &publish](
+                         const ContinuationPoint<System>& a, const ContinuationPoint<System>& b) mutable {
+        if (count == 1) {
+          head.y1 = pack(b);
+          head.valid = b.orbit.t0 == head.t0;
+          publish();
+        }
+        return !last && joins(sys, a, b, p_next, next);
+      });
       set_(sys, p0);
       const Guess g = start(sys, p0);
       runs[k] = cont.run(g.mode, g.t0, g.x0, p0);
