@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -70,6 +71,29 @@ Law to_law(const py::handle& law) {
   if (py::isinstance<StribeckLaw<double>>(law)) return law.cast<StribeckLaw<double>>();
   if (py::isinstance<RegularisedLaw<double>>(law)) return law.cast<RegularisedLaw<double>>();
   throw std::invalid_argument("PointDamper: law must be a CoulombLaw, StribeckLaw or RegularisedLaw");
+}
+
+/// A Python argument or callable result as T, else TypeError "<what>, got <its type[ and shape]>"
+/// (what: the parameter and what it must be), instead of pybind11's RuntimeError.
+template <class T>
+T cast_as(const py::handle& h, const std::string& what) {
+  try {
+    return h.cast<T>();
+  } catch (const py::cast_error&) {
+  } catch (const py::reference_cast_error&) {
+  }
+  std::string got = py::str(py::type::of(h).attr("__name__"));
+  if (py::hasattr(h, "shape")) got += " of shape " + std::string(py::str(h.attr("shape")));
+  throw py::type_error(what + ", got " + got);
+}
+
+/// Checks a run's start: x0 of state_size() entries (ValueError naming x0, with both sizes), then
+/// its mode (validate_state: num_dampers() states, ...).
+void check_start(const System& system, const Mode& mode, const State& x, const std::string& where) {
+  if (x.size() != system.state_size())
+    throw std::invalid_argument(where + ": x0 has size " + std::to_string(x.size()) +
+                                ", expected state_size() = " + std::to_string(system.state_size()));
+  system.validate_state(mode, x, where.c_str());
 }
 
 /// A point of the frame whose displacement simulate() records at every sample:
@@ -170,7 +194,7 @@ Run run_simulation(System& system, double t_end, const RunOptions<double>& optio
   Run run;
   State x = x0 ? *x0 : system.initial_state();
   Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
-  system.validate_state(mode, x, "simulate");
+  check_start(system, mode, x, "simulate");
   std::vector<System::Vector> shapes;
   for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
   {
@@ -209,22 +233,27 @@ RunOptions<double> make_run_options(const std::string& integrator, const py::kwa
   for (const auto& item : kwargs) {
     const std::string key = py::cast<std::string>(item.first);
     const py::handle v = item.second;
-    if (key == "fixed_step") s.fixed_step = v.cast<double>();
-    else if (key == "initial_step") s.initial_step = v.cast<double>();
-    else if (key == "rtol") s.rtol = v.cast<double>();
-    else if (key == "atol") s.atol = v.cast<double>();
-    else if (key == "safety") s.safety = v.cast<double>();
-    else if (key == "min_step") s.min_step = v.cast<double>();
-    else if (key == "max_step") s.max_step = v.cast<double>();
-    else if (key == "max_steps") s.max_steps = v.cast<long>();
-    else if (key == "event_location") s.event_location = v.cast<EventLocation>();
-    else if (key == "event_time_tolerance") s.event_time_tolerance = v.cast<double>();
-    else if (key == "guard_zero_tolerance") s.guard_zero_tolerance = v.cast<double>();
-    else if (key == "guard_samples") s.guard_samples = v.cast<long>();
-    else if (key == "zeno_max_events") s.zeno_max_events = v.cast<long>();
-    else if (key == "zeno_window") s.zeno_window = v.cast<double>();
-    else if (key == "output_interval") s.output_interval = v.cast<double>();
-    else if (key == "check_stability_limit") o.check_stability_limit = v.cast<bool>();
+    const auto as = [&](auto kind, const char* what) {  // v as kind's type, or TypeError naming the option
+      return cast_as<decltype(kind)>(v, "RunOptions: " + key + " must be " + what);
+    };
+    const auto real = [&] { return as(0.0, "a float"); };
+    const auto count = [&] { return as(0L, "an int"); };
+    if (key == "fixed_step") s.fixed_step = real();
+    else if (key == "initial_step") s.initial_step = real();
+    else if (key == "rtol") s.rtol = real();
+    else if (key == "atol") s.atol = real();
+    else if (key == "safety") s.safety = real();
+    else if (key == "min_step") s.min_step = real();
+    else if (key == "max_step") s.max_step = real();
+    else if (key == "max_steps") s.max_steps = count();
+    else if (key == "event_location") s.event_location = as(EventLocation{}, "an EventLocation");
+    else if (key == "event_time_tolerance") s.event_time_tolerance = real();
+    else if (key == "guard_zero_tolerance") s.guard_zero_tolerance = real();
+    else if (key == "guard_samples") s.guard_samples = count();
+    else if (key == "zeno_max_events") s.zeno_max_events = count();
+    else if (key == "zeno_window") s.zeno_window = real();
+    else if (key == "output_interval") s.output_interval = real();
+    else if (key == "check_stability_limit") o.check_stability_limit = as(false, "a bool");
     else throw std::invalid_argument("RunOptions: unknown option " + key);
   }
   return o;
@@ -240,7 +269,9 @@ std::function<double(const System&, double, const State&)> trade_output(const py
   }
   if (!PyCallable_Check(output.ptr()))
     throw std::invalid_argument("trade_study: output must be a Probe or a callable f(t, x)");
-  return [output](const System&, double t, const State& x) { return output(t, x).cast<double>(); };
+  return [output](const System&, double t, const State& x) {
+    return cast_as<double>(output(t, x), "trade_study: output(t, x) must return a float");
+  };
 }
 
 void bind_frame(py::module_& m) {
@@ -368,7 +399,24 @@ void bind_dampers(py::module_& m) {
            py::arg("amplitude") = 0.0, py::arg("omega") = 0.0, py::arg("phase") = 0.0, py::arg("offset") = 0.0)
       .def_static("harmonic", &Load::harmonic, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
                   py::arg("amplitude"), py::arg("omega"), py::arg("phase") = 0.0)
-      .def_readwrite("time_function", &Load::time_function, "optional F(t) (a Python callable; slower)")
+      .def_property(
+          "time_function", [](const Load& l) { return l.time_function; },
+          [](Load& l, const py::object& f) {
+            l.time_function = nullptr;
+            if (f.is_none()) return;
+            if (!PyCallable_Check(f.ptr()))
+              throw std::invalid_argument("PointLoad: time_function must be None or a callable F(t)");
+            // Copies share one reference, released with the GIL held (copies may live on other threads).
+            std::shared_ptr<py::object> fn(new py::object(f), [](py::object* o) {
+              py::gil_scoped_acquire gil;
+              delete o;
+            });
+            l.time_function = [fn](double t) {
+              py::gil_scoped_acquire gil;
+              return cast_as<double>((*fn)(t), "PointLoad: time_function(t) must return a float");
+            };
+          },
+          "optional F(t) (a Python callable; slower)")
       .def("value", &Load::value, py::arg("t"));
   using Options = ModelOptions<double>;
   py::class_<Options>(m, "ModelOptions", "What a friction-damped scene models (docs/model.md).")
@@ -637,8 +685,9 @@ void bind_trade_study(py::module_& m) {
              Variant v;
              v.name = std::move(name);
              v.run = run;
-             v.setup = [setup]() {
-               System sys = setup().cast<System>();
+             v.setup = [setup, name = v.name]() {
+               System sys =
+                   cast_as<System>(setup(), "TradeVariant " + name + ": setup() must return a FrictionDampedSystem");
                State x = sys.initial_state();
                Mode mode = sys.requested_mode();
                if (!sys.make_consistent(mode, 0.0, x))
@@ -726,11 +775,17 @@ PyOrbit to_py(const PeriodicOrbit<System>& orbit) {
   return out;
 }
 
-/// The periodic components the steady-state functions compare by default: q, q', x_d, x_d'
-/// (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor the audit
-/// integrals.
-std::vector<Index> default_periodic(const System& system) {
-  return ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+/// The periodic components the steady-state functions compare: `periodic` (ValueError naming it
+/// when empty - C++'s "all", here the audit integrals too - or out of range) or by default q,
+/// q', x_d, x_d' (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor
+/// the audit integrals.
+std::vector<Index> periodic_set(const System& system, const std::optional<std::vector<Index>>& periodic,
+                                const std::string& where) {
+  if (!periodic) return ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+  if (periodic->empty())
+    throw std::invalid_argument(where + ": periodic must not be empty (None: the default q, q', x_d, x_d')");
+  detail::require_indices(where, "periodic", *periodic, system.state_size());
+  return *periodic;
 }
 
 /// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
@@ -748,7 +803,7 @@ ShootingOptions<double> shooting_options(const System& system, const std::option
   else if (monodromy != "variational")
     throw std::invalid_argument(where + ": monodromy must be 'variational' or 'finite_difference', got '" + monodromy +
                                 "'");
-  opt.periodic = periodic ? *periodic : default_periodic(system);
+  opt.periodic = periodic_set(system, periodic, where);
   return opt;
 }
 
@@ -828,14 +883,17 @@ struct ContinuationCallbacks {
     system = next;
   }
   double period_of(double p) const {
-    if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked > 0 by Continuation
+    if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked by continue_orbits
     py::gil_scoped_acquire gil;
-    return (*period)(p).cast<double>();
+    return cast_as<double>((*period)(p), "continue_orbits: period(p) must return a float");
   }
   Mode mode_of(System& system, double t, const State& x, const Mode& previous) const {
     py::gil_scoped_acquire gil;
     const py::object r = (*start_mode)(py::cast(&system, py::return_value_policy::reference), t, x, to_list(previous));
-    return to_mode(r.cast<std::vector<ContactState>>());
+    const std::string what = "continue_orbits: start_mode(system, t, x, mode)";
+    Mode mode = to_mode(cast_as<std::vector<ContactState>>(r, what + " must return a list of ContactState"));
+    system.validate_state(mode, x, what.c_str());
+    return mode;
   }
   void point(const ContinuationPoint<System>& pt) const {
     py::gil_scoped_acquire gil;
@@ -844,12 +902,13 @@ struct ContinuationCallbacks {
   SplitContinuation<System>::Guess guess(System& system, double p) const {
     py::gil_scoped_acquire gil;
     const py::object r = (*start)(py::cast(&system, py::return_value_policy::reference), p);
-    const auto t = r.cast<std::tuple<std::vector<ContactState>, double, State>>();
-    SplitContinuation<System>::Guess g{to_mode(std::get<0>(t)), std::get<1>(t), std::get<2>(t)};
-    if (g.x0.size() != system.state_size())
-      throw std::invalid_argument("continue_orbits: start(system, p) returned x0 of size " +
-                                  std::to_string(g.x0.size()) + ", not state_size() = " +
-                                  std::to_string(system.state_size()));
+    const std::string where = "continue_orbits: start(system, p)", what = where + " must return (mode, t0, x0)";
+    const auto t = cast_as<std::tuple<py::object, py::object, py::object>>(r, what);
+    SplitContinuation<System>::Guess g{
+        to_mode(cast_as<std::vector<ContactState>>(std::get<0>(t), what + " with mode a list of ContactState")),
+        cast_as<double>(std::get<1>(t), what + " with t0 a float"),
+        cast_as<State>(std::get<2>(t), what + " with x0 a 1-D array of floats")};
+    check_start(system, g.mode, g.x0, where);
     return g;
   }
 };
@@ -894,6 +953,7 @@ void bind_steady_state(py::module_& m) {
                                                              atol, "find_periodic_orbit");
         State x = x0 ? *x0 : system.initial_state();
         Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        check_start(system, md, x, "find_periodic_orbit");
         py::gil_scoped_release release;
         Shooting<System> shooting(system, opt);
         return to_py(shooting.forced(md, t0, x, period));
@@ -958,13 +1018,15 @@ void bind_steady_state(py::module_& m) {
         if (!PyCallable_Check(parameter.ptr()))
           throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
         if (!PyCallable_Check(period.ptr())) {
-          const double T = period.cast<double>();
+          const double T = cast_as<double>(period, where + ": period must be a float or a callable period(p)");
           detail::require_positive(where, "period", T);
         }
         if (!start_mode.is_none() && !PyCallable_Check(start_mode.ptr()))
           throw std::invalid_argument(where + ": start_mode must be None or a callable start_mode(system, t, x, mode)");
         if (!on_point.is_none() && !PyCallable_Check(on_point.ptr()))
           throw std::invalid_argument(where + ": on_point must be None or a callable on_point(point)");
+        detail::require_finite(where, "p0", p0);
+        detail::require_finite(where, "p_end", p_end);
         if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
         const ShootingOptions<double> opt =
             shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, where);
@@ -984,6 +1046,7 @@ void bind_steady_state(py::module_& m) {
         const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point, &start};
         State x = x0 ? *x0 : system.initial_state();
         Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        check_start(system, md, x, where);
         PyContinuation out;
         // Parts 1 .. n-1 run on copies (made and destroyed with the GIL held: a load's Python
         // time_function is copied with them).
@@ -1068,16 +1131,18 @@ void bind_steady_state(py::module_& m) {
       [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          int transient_periods, int record_periods, int max_period, double tolerance,
          std::optional<std::vector<Index>> periodic, double rtol, double atol) {
+        detail::require_positive("poincare_sections", "period", period);
         PoincareOptions<double> opt;
         opt.transient_periods = transient_periods;
         opt.record_periods = record_periods;
         opt.max_period = max_period;
         opt.tolerance = tolerance;
-        opt.periodic = periodic ? *periodic : default_periodic(system);
+        opt.periodic = periodic_set(system, periodic, "poincare_sections");
         opt.stepper.rtol = rtol;
         opt.stepper.atol = atol;
         const State x = x0 ? *x0 : system.initial_state();
         const Mode md = mode ? to_mode(*mode) : system.requested_mode();
+        check_start(system, md, x, "poincare_sections");
         PyPoincare out;
         {
           py::gil_scoped_release release;

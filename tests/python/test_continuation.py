@@ -150,6 +150,60 @@ def test_bad_callables_and_options_are_reported():
         ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, monodromy="guess")
 
 
+def test_bad_arguments_and_callable_results_are_named():
+    # Each error names the Python parameter (or callable) and says what it must be and what it
+    # got: a TypeError for a wrong type (not pybind11's "Unable to cast" RuntimeError), a
+    # ValueError for a wrong value or size (not a later C++ check blaming another option).
+    at, basis, psi = scene()
+    system = at(1.0, 230.0)
+    n = system.state_size
+    P = lambda s, p: at(1.0, p * UNIT)  # noqa: E731
+    T = lambda p: 2 * math.pi / (p * UNIT)  # noqa: E731
+    run = lambda **kw: ss.continue_orbits(system, P, kw.pop("p0", 2.3), kw.pop("p_end", 2.9),  # noqa: E731
+                                          kw.pop("period", T), **kw)
+    for period in (None, "abc"):
+        with pytest.raises(TypeError, match="continue_orbits: period must be a float or a callable period\\(p\\), got "):
+            run(period=period)
+    with pytest.raises(TypeError, match="continue_orbits: period\\(p\\) must return a float, got NoneType"):
+        run(period=lambda p: None)
+    with pytest.raises(ValueError, match="continue_orbits: p0 must be finite \\(got nan\\)"):
+        run(p0=math.nan)
+    with pytest.raises(ValueError, match="continue_orbits: p_end must be finite \\(got nan\\)"):
+        run(p_end=math.nan)
+    for parts in (1, 2):
+        with pytest.raises(ValueError, match=f"continue_orbits: x0 has size 3, expected state_size\\(\\) = {n}"):
+            run(x0=np.zeros(3), parts=parts)
+    with pytest.raises(ValueError, match="continue_orbits: mode \\(DamperStates\\) has 1 states"):
+        run(mode=[ss.ContactState.Stick])
+    with pytest.raises(ValueError, match="continue_orbits: periodic must not be empty \\(None: the default"):
+        run(periodic=[])
+    with pytest.raises(ValueError, match="continue_orbits: periodic: index out of"):
+        run(periodic=[n])
+    # start(system, p) -> (mode, t0, x0) of parts > 1.
+    what = "continue_orbits: start\\(system, p\\) must return \\(mode, t0, x0\\)"
+    for bad, match in [(None, ", got NoneType"), ((1, 2), ", got tuple"),
+                       (([], 0.0, np.zeros((2, 4))), " with x0 a 1-D array of floats, got ndarray of shape \\(2, 4\\)"),
+                       (([], None, np.zeros(n)), " with t0 a float, got NoneType"),
+                       ((3, 0.0, np.zeros(n)), " with mode a list of ContactState, got int")]:
+        with pytest.raises(TypeError, match=what + match):
+            run(parts=2, start=lambda s, p, bad=bad: bad)
+    with pytest.raises(ValueError, match="start\\(system, p\\): mode \\(DamperStates\\) has 1 states"):
+        run(parts=2, start=lambda s, p: ([ss.ContactState.Stick], 0.0, np.zeros(n)))
+    # start_mode(system, t, x, mode) -> mode.
+    what = "continue_orbits: start_mode\\(system, t, x, mode\\)"
+    with pytest.raises(TypeError, match=what + " must return a list of ContactState, got NoneType"):
+        run(start_mode=lambda s, t, x, mode: None)
+    with pytest.raises(ValueError, match=what + ": mode \\(DamperStates\\) has 1 states"):
+        run(start_mode=lambda s, t, x, mode: [ss.ContactState.Stick])
+    # poincare_sections' start state and periodic set.
+    with pytest.raises(ValueError, match=f"poincare_sections: x0 has size 3, expected state_size\\(\\) = {n}"):
+        ss.poincare_sections(system, 0.02, x0=np.zeros(3))
+    with pytest.raises(ValueError, match="poincare_sections: mode \\(DamperStates\\) has 1 states"):
+        ss.poincare_sections(system, 0.02, mode=[ss.ContactState.Stick])
+    with pytest.raises(ValueError, match="poincare_sections: periodic must not be empty"):
+        ss.poincare_sections(system, 0.02, periodic=[])
+
+
 def test_a_damper_stuck_all_period_has_stick_fraction_one():
     # A preload far above what the load can overcome: the damper never leaves Stick.
     f = ss.FrameModel()
@@ -200,7 +254,7 @@ def test_a_branch_in_two_parts_joins_and_is_the_closed_form_receptance():
         ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=0)
     with pytest.raises(ValueError, match="start must be None or a callable"):
         ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=2, start=1.0)
-    with pytest.raises(ValueError, match="start\\(system, p\\) returned x0 of size 1"):
+    with pytest.raises(ValueError, match="start\\(system, p\\): x0 has size 1, expected state_size\\(\\) = "):
         ss.continue_orbits(system, lambda s, p: at(1.0, p * UNIT), 2.3, 2.9, 0.02, parts=2,
                            start=lambda s, p: ([], 0.0, np.zeros(1)))
 
@@ -258,7 +312,7 @@ def test_poincare_sections_report_a_quasi_periodic_response_and_bad_input():
     r = ss.poincare_sections(system, T, transient_periods=50)
     assert r.status == ss.PoincareStatus.NotPeriodic and not r.periodic and r.period == 0
     assert r.recurrence.size == 8 and np.all(r.recurrence > 1e-3)
-    with pytest.raises(ValueError, match="poincare_sections: T must be finite and > 0"):
+    with pytest.raises(ValueError, match="poincare_sections: period must be finite and > 0"):
         ss.poincare_sections(system, -T)
     with pytest.raises(ValueError, match="options.record_periods must be >= 2 options.max_period"):
         ss.poincare_sections(system, T, record_periods=4, max_period=8)

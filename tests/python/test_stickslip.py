@@ -275,10 +275,41 @@ def test_bad_input_raises_value_error_naming_the_parameter():
     system = ss.FrictionDampedSystem(f, basis, [])
     with pytest.raises(ValueError, match="fixed_step is above RungeKutta4's stability limit"):
         ss.simulate(system, 0.1, ss.RunOptions("rk4", fixed_step=1e-2))
-    with pytest.raises(ValueError, match="simulate"):
+    with pytest.raises(ValueError, match=f"simulate: x0 has size 3, expected state_size\\(\\) = {system.state_size}"):
         ss.simulate(system, 0.1, x0=np.zeros(3))
     with pytest.raises(ValueError, match="window.t_end must be > window.t_start"):
         ss.simulate(system, 0.1, statistics=ss.StatisticsWindow(1.0, 0.5, 0.1))
+
+
+def test_bad_python_values_and_callable_results_raise_type_error_naming_them():
+    # Not pybind11's RuntimeError "Unable to cast Python instance ...": a TypeError naming the
+    # option or callable, what it must be and what it got (or, in a trade study, that message in
+    # the row, as for any failing variant).
+    f, m, basis = cantilever()
+    with pytest.raises(TypeError, match="RunOptions: rtol must be a float, got str"):
+        ss.RunOptions("dopri5", rtol="tight")
+    with pytest.raises(TypeError, match="RunOptions: max_steps must be an int, got float"):
+        ss.RunOptions("dopri5", max_steps=1.5)
+    load = ss.PointLoad(m, 0.1)
+    with pytest.raises(ValueError, match="PointLoad: time_function must be None or a callable F\\(t\\)"):
+        load.time_function = 2.0
+    load.time_function = lambda t: None
+    with pytest.raises(TypeError, match="PointLoad: time_function\\(t\\) must return a float, got NoneType"):
+        load.value(0.0)
+    with pytest.raises(TypeError, match="PointLoad: time_function\\(t\\) must return a float, got NoneType"):
+        ss.simulate(ss.FrictionDampedSystem(f, basis, [], [load]), 0.01)
+    load.time_function = None
+    assert load.time_function is None and load.value(1.0) == 0.0
+    harmonic = ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, 1.0, 200.0)
+    good = lambda: ss.FrictionDampedSystem(f, basis, [], [harmonic])  # noqa: E731
+    probe = ss.Probe(m, 0.2)
+    study = ss.trade_study(ss.TradeVariant("ref", good), [], t_end=0.01, output=lambda t, x: None, repeats=1)
+    assert not study.reference.started
+    assert "trade_study: output(t, x) must return a float, got NoneType" in study.reference.message
+    study = ss.trade_study(ss.TradeVariant("ref", good), [ss.TradeVariant("bad", lambda: None)], t_end=0.01,
+                           output=probe, repeats=1)
+    assert not study.rows[0].started
+    assert "TradeVariant bad: setup() must return a FrictionDampedSystem, got NoneType" in study.rows[0].message
 
 
 def test_periodic_orbit_of_a_damped_linear_scene_is_the_closed_form():
@@ -319,6 +350,17 @@ def test_periodic_orbit_rejects_a_bad_request_naming_it():
         ss.find_periodic_orbit(system, 0.01, monodromy="guess")
     with pytest.raises(ValueError, match="period"):
         ss.find_periodic_orbit(system, -1.0)
+    n = system.state_size
+    with pytest.raises(ValueError, match=f"find_periodic_orbit: x0 has size 3, expected state_size\\(\\) = {n}"):
+        ss.find_periodic_orbit(system, 0.01, x0=np.zeros(3))
+    damped = ss.FrictionDampedSystem(f, basis, [ss.PointDamper(m, 0.15, 0.01, 5e3, 5.0, ss.CoulombLaw(0.35, 0.3))])
+    with pytest.raises(ValueError, match="find_periodic_orbit: mode \\(DamperStates\\) has 0 states, expected num_dampers"):
+        ss.find_periodic_orbit(damped, 0.01, mode=[])  # was read past its end (an assertion in Debug builds)
+    # [] is not "all components" (C++'s empty set, which takes in the audit integrals): None is the default.
+    with pytest.raises(ValueError, match="find_periodic_orbit: periodic must not be empty \\(None: the default"):
+        ss.find_periodic_orbit(system, 0.01, periodic=[])
+    with pytest.raises(ValueError, match=f"find_periodic_orbit: periodic: index out of \\[0, {n}\\) \\(got {n}\\)"):
+        ss.find_periodic_orbit(system, 0.01, periodic=[n])
 
 
 def test_a_damper_without_preload_that_may_separate_starts_in_flight():
