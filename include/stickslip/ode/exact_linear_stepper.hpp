@@ -1113,7 +1113,7 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
     // No step below min_step * max(1, |t|) short of t_end: t + h would not resolve it (the
     // guard sampling step of a stiff mode far out in t), and a run of such steps would spin
     // until max_steps with a clock that does not advance.
-    const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t_));
+    const Scalar hmin = opt_.smallest_step(t_);
     if (exact_) {
       Scalar hs = delta_;
       t1 = t_ + hs;

@@ -179,7 +179,7 @@ void HybridStepper<System, Method>::check_time_resolution(Scalar t0, Scalar t_en
   const Scalar t_max = std::max(std::abs(t0), std::abs(t_end));
   if (!adaptive_) {
     // RK4 takes no step below min_step * max(1, |t|), the bound an adaptive method fails at.
-    const Scalar hmin = opt_.min_step * std::max(Scalar(1), t_max);
+    const Scalar hmin = opt_.smallest_step(t_max);
     if (!(opt_.fixed_step >= hmin))
       detail::throw_invalid(where,
                             "options.fixed_step must be >= options.min_step * max(1, |t|) = " +
@@ -390,7 +390,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       return finish(r, Status::MaxSteps, t, x_, mode,
                     "max_steps " + std::to_string(opt_.max_steps) + " reached " +
                         detail::at_time(t));
-    const Scalar hmin = opt_.min_step * std::max(Scalar(1), std::abs(t));
+    const Scalar hmin = opt_.smallest_step(t);
     // An adaptive step below min_step (a small initial step at large |t|) could round t + h to t.
     h = adaptive_ ? std::min(std::max(h, hmin), hmax) : std::min(h, hmax);
     const bool on_grid = !adaptive_ && !nan_recovery;

@@ -4,6 +4,8 @@
 
 #include <stickslip/detail/validate.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -74,6 +76,13 @@ struct StepperOptions {
   long zeno_max_immediate_events = 100;  ///< consecutive immediate events allowed
   Scalar output_interval = 0;          ///< > 0: on_sample at t0, t0 + dt, ... via dense output
   long max_samples = 100'000'000;      ///< largest number of samples a run may ask for
+
+  /// The smallest step a run takes at time t: min_step * max(1, |t|) (below it t + h does not
+  /// resolve h, or only to a few ulps).
+  Scalar smallest_step(Scalar t) const {
+    using std::abs;
+    return min_step * std::max(Scalar(1), abs(t));
+  }
 
   /// Throws std::invalid_argument("<where>: <option> ...") for an option out of range.
   void validate(const std::string& where) const {

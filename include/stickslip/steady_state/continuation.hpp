@@ -525,10 +525,6 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
     // rule sees that last step too: it may cross what the rule looks for inside the range (a
     // SplitContinuation part whose last step passes both the next part's start and the end).
     const bool outside = p_new < opt_.parameter_min || p_new > opt_.parameter_max;
-    if (outside && !stop_) {
-      set_(sys_, p);
-      return result;
-    }
     const bool changed = next.floquet.stable != result.points.back().orbit.floquet.stable;
     const Scalar shift = outside ? Scalar(0) : section_shift(next, period_(p_new));
     ContinuationPoint<System> point{p_new, std::move(next), ds, changed};

@@ -110,7 +110,7 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   detail::require_finite(where, "t0", t0);
   detail::require_positive(where, "T", T);
   options.validate(where, n);
-  detail::require_resolved_period(where, "T", t0, T, options.stepper.min_step);
+  detail::require_resolved_period(where, "T", t0, T, options.stepper);
 
   PeriodRun<System> run;
   const std::vector<Eigen::Index> comps = options.amplitude_indices(n);

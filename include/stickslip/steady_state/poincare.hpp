@@ -109,7 +109,7 @@ PoincareSections<System> poincare_sections(System& system, const typename System
   if (!detail::all_finite(x0)) throw std::invalid_argument(where + ": x0 must be finite");
   options.validate(where, x0.size());
   detail::require_resolved_period(
-      where, "T", t0, T, options.stepper.min_step,
+      where, "T", t0, T, options.stepper,
       Scalar(options.transient_periods + options.record_periods + 1) * T);
   std::vector<Eigen::Index> P = options.periodic;
   if (P.empty()) P = ShootingOptions<Scalar>::first(x0.size());

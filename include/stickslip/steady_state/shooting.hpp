@@ -237,7 +237,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
   detail::require_finite(where, "t0", t0);
   detail::require_positive(where, "period", period);
   opt_.validate(where, n);
-  detail::require_resolved_period(where, "period", t0, period, opt_.stepper.min_step);
+  detail::require_resolved_period(where, "period", t0, period, opt_.stepper);
 
   const auto P = opt_.periodic_indices(n);
   const auto p = static_cast<Eigen::Index>(P.size());

@@ -18,15 +18,15 @@ namespace stickslip {
 
 namespace detail {
 /// Throws std::invalid_argument("<where>: <name> must be >= options.stepper.min_step * max(1, |t|)
-/// ...") when the period T is below the time resolution min_step * max(1, |t|) at the largest |t|
-/// of the run (|t0| + span): there t0 + T rounds to (nearly) t0, and a run of "one period"
-/// returns its start, which would close for any state.
+/// ...") when the period T is below the stepper's smallest step at the largest |t| of the run
+/// (|t0| + span): there t0 + T rounds to (nearly) t0, and a run of "one period" returns its
+/// start, which would close for any state.
 template <class Scalar>
 void require_resolved_period(const std::string& where, const char* name, Scalar t0, Scalar T,
-                             Scalar min_step, Scalar span = Scalar(0)) {
+                             const StepperOptions<Scalar>& stepper, Scalar span = Scalar(0)) {
   using std::abs;
   const Scalar t_max = abs(t0) + span;
-  const Scalar floor = min_step * std::max(Scalar(1), t_max);
+  const Scalar floor = stepper.smallest_step(t_max);
   if (!(T >= floor))
     throw_invalid(where,
                   std::string(name) + " must be >= options.stepper.min_step * max(1, |t|) = " +
