@@ -9,6 +9,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/modal.hpp"
 #include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/detail/law_visit.hpp"
 #include "stickslip/model/detail/small_solve.hpp"
 #include "stickslip/model/model_options.hpp"
 #include "stickslip/model/point_damper.hpp"
@@ -38,27 +39,6 @@
 namespace stickslip {
 
 namespace detail {
-template <class T>
-struct is_std_variant : std::false_type {};
-template <class... Ts>
-struct is_std_variant<std::variant<Ts...>> : std::true_type {};
-
-/// Call f(law) with the concrete law (visiting a std::variant of laws).
-template <class Law, class F>
-decltype(auto) with_law(const Law& law, F&& f) {
-  if constexpr (is_std_variant<Law>::value)
-    return std::visit(std::forward<F>(f), law);
-  else
-    return std::forward<F>(f)(law);
-}
-
-/// True when the (possibly variant) law has a stick state (exact Coulomb-type laws).
-template <class Law>
-bool law_has_stick_state(const Law& law) {
-  return with_law(law, [](const auto& l) {
-    return std::decay_t<decltype(l)>::has_stick_state;
-  });
-}
 
 /// "2.56 kHz": the frequency omega / (2 pi) of an angular frequency omega [rad/s], 3 digits.
 template <class Scalar>

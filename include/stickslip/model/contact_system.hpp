@@ -1,0 +1,205 @@
+#pragma once
+/// \file contact_system.hpp
+/// \brief A modal structure with friction contacts of any kind (the contact concept) and point
+/// loads, as a hybrid system: the coupled solve, guards and transitions written once over the
+/// contacts, never per kind (docs/contacts.md).
+///
+/// With mass-normalised modal coordinates q (component 2), damping c_j and loads F_l(t) along
+/// rows phi_l, and contact rows w_i (s_i = w_i . q, v_i = w_i . q'):
+///   q'' = r + sum_i w_i f_i,   r = -c o q' - omega^2 o q + sum_l phi_l F_l(t).
+/// A slipping contact's force is known, f_i = -mu_k(|v_i|) N_i sgn(v_i) (paper eq. 1; a
+/// regularised law's -mu(v_i) N_i in every state). The forces lambda of the stuck contacts S
+/// keep v_S' = W_S q'' = 0: (W_S W_S^T) lambda = -W_S r_known (the capacitance form; W_S holds
+/// the rows of S), and f_required = lambda drives component 4's stick guards.
+
+#include <stickslip/beam/frame_model.hpp>
+#include <stickslip/contact/contact_state.hpp>
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/modal/modal_basis.hpp>
+#include <stickslip/model/contact_concept.hpp>
+#include <stickslip/model/damper_states.hpp>
+#include <stickslip/model/detail/contact_machine.hpp>
+#include <stickslip/model/point_contact.hpp>
+#include <stickslip/model/point_load.hpp>
+#include <stickslip/moving_load/member_shapes.hpp>
+#include <stickslip/ode/hybrid_system.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace stickslip {
+
+/// Options of a ContactSystem.
+template <class Scalar>
+struct ContactSystemOptions {
+  /// Carry the energy audit's integrals (external work, viscous and friction dissipation) as
+  /// three extra states; energy_balance() then closes to the integration error.
+  bool energy_audit = true;
+  /// |v| at or below this counts as v = 0 where a contact's state is decided (CoulombContact).
+  Scalar velocity_tolerance = CoulombContact<CoulombLaw<Scalar>>::default_velocity_tolerance();
+};
+
+/// Structure (a frame's retained modes) + contacts + point loads, as a HybridSystem (docs/ode.md)
+/// for simulate(), the steady states and the sweeps. `Contact` is any type of the contact
+/// concept (contact_concept.hpp), PointContact by default.
+///
+/// Thread safety: a ContactSystem holds the workspace of its solve; one object serves one run
+/// at a time. Copy it for concurrent runs (copies share nothing).
+template <class Scalar_, class Contact_ = PointContact<Scalar_>>
+class ContactSystem {
+  static_assert(is_contact_v<Contact_>,
+                "ContactSystem<Scalar, Contact>: Contact needs `using Scalar`, `using Law`, "
+                "tangential_row(frame, basis, where), law(), normal_force(t), start_state() and "
+                "validate(where); see stickslip/model/contact_concept.hpp");
+
+ public:
+  using Scalar = Scalar_;                                     ///< floating-point type
+  using Contact = Contact_;                                   ///< the contacts' type
+  using Law = typename Contact::Law;                          ///< their friction law type
+  using Index = Eigen::Index;                                 ///< index type
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;    ///< dynamic vector
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  ///< dynamic matrix
+  using State = Vector;                                       ///< [q, q', audit integrals]
+  using Mode = DamperStates;                                  ///< one ContactState per contact
+  using GuardVector = Vector;                                 ///< guard values
+  using Load = PointLoad<Scalar>;                             ///< external point load
+  using Options = ContactSystemOptions<Scalar>;               ///< options
+
+  /// One contact switch, logged by transition() and make_consistent().
+  struct ContactEvent {
+    Scalar t;            ///< time of the switch
+    Index contact;       ///< which contact switched
+    ContactState from;   ///< its state before
+    ContactState to;     ///< its state after
+  };
+
+  /// Forces and kinematics of the contacts at one (mode, t, x).
+  struct Evaluation {
+    Vector qdd;   ///< q''
+    Vector f;     ///< friction force on side a of each contact along its direction [N]
+    Vector v;     ///< sliding velocity of side a over side b [m/s]
+    Vector N;     ///< normal force [N]
+    bool finite = true;  ///< false when the solve failed (dependent stuck rows) or x is not finite
+  };
+
+  /// The energy audit at one state: (E - E0) - (W_ext - D_visc - D_fric) = residual.
+  struct EnergyBalance {
+    Scalar mechanical;            ///< E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J]
+    Scalar external_work;         ///< W_ext = int sum_l F_l phi_l . q' dt [J]
+    Scalar viscous_dissipation;   ///< D_visc = int sum_j c_j q_j'^2 dt [J]
+    Scalar friction_dissipation;  ///< D_fric = -int sum_i f_i v_i dt (+ the stuck projections) [J]
+    Scalar residual;              ///< (E - E0) - (W_ext - D_visc - D_fric) [J]
+    Scalar scale;                 ///< largest magnitude of the terms, for a relative residual [J]
+    /// |residual| / scale (0 when every term is 0).
+    Scalar relative_residual() const { return scale > 0 ? std::abs(residual) / scale : Scalar(0); }
+  };
+
+  /// Assembles the system: each contact's row from `frame` and `basis` (once), each load's row.
+  /// \throws std::invalid_argument naming the contact or load and the parameter: a basis of
+  ///         another frame, more than DamperStates::max_dampers contacts, a contact whose row is
+  ///         zero (its sides do not move apart in the retained modes, so it can never slip), a
+  ///         contact's own checks (validate), a load's (PointLoad::validate) or one off its member.
+  ContactSystem(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, std::vector<Contact> contacts,
+                std::vector<Load> loads = {}, Options options = {});
+
+  Index num_modes() const noexcept { return n_; }                                  ///< n
+  Index num_contacts() const noexcept { return D_; }                               ///< D
+  Index state_size() const noexcept { return 2 * n_ + (options_.energy_audit ? 3 : 0); }  ///< 2n (+ 3)
+  Index audit_offset() const noexcept { return 2 * n_; }  ///< first audit integral (W_ext, D_visc, D_fric)
+  const std::vector<Contact>& contacts() const noexcept { return contacts_; }     ///< the contacts
+  const std::vector<Load>& loads() const noexcept { return loads_; }               ///< the loads
+  const Options& options() const noexcept { return options_; }                     ///< the options
+  /// Row w_i of contact i (s_i = w_i . q).
+  auto contact_row(Index i) const { return W_.row(i).transpose(); }
+
+  /// Rest: q = q' = 0, audit integrals 0.
+  State initial_state() const { return State::Zero(state_size()); }
+  /// Each contact's start_state().
+  Mode requested_mode() const;
+
+  /// \throws std::invalid_argument naming `where` for a state of the wrong size, a mode of the
+  ///         wrong size or with a state that is not an enumerator / not allowed under a held normal.
+  void validate_state(const Mode& mode, const State& x, const char* where = "ContactSystem") const;
+
+  /// Makes (mode, x) consistent at t: a contact with |v| above the velocity tolerance slides in
+  /// sgn(v), one at rest is tried stuck, a stuck contact whose force exceeds mu_s N slips (the
+  /// worst first, until every stuck force lies within mu_s N), stuck velocities are
+  /// projected to v = 0 (the kinetic energy removed is booked as friction dissipation). Logs the
+  /// switches. Returns false when no consistent set of states was found.
+  bool make_consistent(Mode& mode, Scalar t, State& x);
+
+  /// dx/dt = (q', q'', audit powers).
+  void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt);
+  /// Guards of every contact in order (component 4: stick 2, slip 1, regularised 0).
+  Index num_guards(const Mode& mode) const;
+  /// Guard values (CoulombContact::guards of each contact).
+  void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g);
+  /// Crossing direction of guard idx (CoulombContact::guard_direction).
+  CrossingDirection guard_direction(const Mode& mode, Index idx) const;
+  /// The contacts whose guards fired switch by component 4's rules; the whole set is then made
+  /// consistent (make_consistent). Stops the run when no consistent state exists.
+  TransitionAction transition(Mode& mode, const TriggeredGuards& which, Scalar t, State& x);
+
+  /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call of
+  /// any non-const member. Reading it does not change later results.
+  const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x);
+
+  /// E = q'.q'/2 + sum omega_j^2 q_j^2 / 2.
+  Scalar mechanical_energy(const State& x) const;
+  /// The energy audit; \throws std::invalid_argument when the audit is off.
+  EnergyBalance energy_balance(const State& x, Scalar E0) const;
+
+  /// Roots of s^2 + c_j s + omega_j^2 of every mode (simulate()'s RK4 stability check).
+  std::vector<std::complex<Scalar>> linear_rates() const;
+
+  /// The switches logged since construction or clear_events().
+  const std::vector<ContactEvent>& events() const noexcept { return events_; }
+  /// Forgets the logged switches.
+  void clear_events() { events_.clear(); }
+
+ private:
+  using Machine = detail::contact_machine_t<Law>;
+
+  void solve(const Mode& mode, Scalar t, const State& x) const;
+  bool has_stick_state(Index i) const {
+    return detail::with_machine(machines_[static_cast<std::size_t>(i)],
+                                [](const auto& m) { return std::decay_t<decltype(m)>::has_stick_state; });
+  }
+  Index guards_of(const Mode& mode, Index i) const {
+    return detail::with_machine(machines_[static_cast<std::size_t>(i)],
+                                [&](const auto& m) { return m.num_guards(mode[i], false); });
+  }
+  bool resolve(Mode& mode, Scalar t, State& x);
+  void project_stuck_velocities(const Mode& mode, Scalar t, State& x);
+  static Vector load_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, const Load& load,
+                         Index l);
+
+  std::vector<Contact> contacts_;
+  std::vector<Load> loads_;
+  Options options_;
+  Index n_ = 0, D_ = 0;
+  Vector omega2_, damping_;
+  Matrix W_;      // D x n: contact rows
+  Matrix Phi_;    // n x L: load rows
+  std::vector<Machine> machines_;
+  std::vector<ContactEvent> events_;
+
+  // Workspace of solve(): sized at construction, no allocation in a time step.
+  mutable Evaluation e_;
+  mutable Vector r_;
+  mutable Matrix C_;             // D x D, the stuck block in its top-left corner
+  mutable Vector b_, lambda_;
+  mutable Eigen::FullPivLU<Matrix> lu_;
+  mutable std::vector<Index> stuck_;
+};
+
+}  // namespace stickslip
+
+#include <stickslip/model/detail/contact_system_impl.hpp>
