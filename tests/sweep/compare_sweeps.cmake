@@ -34,6 +34,43 @@ if(RANKS STREQUAL "help")
   return()
 endif()
 
+# RANKS=arguments: bad arguments end the program before any run with a non-zero status and a
+# message naming the option; a sweep where every item fails prints no optimum, writes
+# "optimum": null and ends with a non-zero status.
+if(RANKS STREQUAL "arguments")
+  # "<arguments>|<expected message>" (a regex; no brackets: they would hide the list's separators)
+  set(cases
+      "--sweep-preloads abc|--sweep-preloads \\(item 1\\) expects a number, got 'abc'"
+      "--sweep-preloads 1,2x|--sweep-preloads \\(item 2\\) expects a number, got '2x'"
+      "--duration inf|--duration must be in .0.5, 1000. s .*got inf"
+      "--duration 1e-300|--duration must be in .0.5, 1000. s .*got 1e-300"
+      "--modes 0|--modes expects an integer in .1, "
+      "--modes 100000|--modes 100000: compute_modes: .*num_modes = 100000 exceeds"
+      "--sweep 1:2:3x|--sweep expects lo:hi:count"
+      "--sweep 1:inf:3|--sweep expects lo:hi:count"
+      "--threads -1|--threads expects an integer in .0, 1024.")
+  foreach(case IN LISTS cases)
+    string(FIND "${case}" "|" bar)
+    string(SUBSTRING "${case}" 0 ${bar} arguments)
+    math(EXPR bar "${bar} + 1")
+    string(SUBSTRING "${case}" ${bar} -1 expected)
+    separate_arguments(arguments UNIX_COMMAND "${arguments}")
+    execute_process(COMMAND ${SWEEP_EXE} --backend serial ${arguments} --out ${out}/bad RESULT_VARIABLE rc
+                    OUTPUT_VARIABLE log ERROR_VARIABLE err)
+    if(rc EQUAL 0 OR NOT err MATCHES "${expected}" OR log MATCHES "preloads on")
+      message(FATAL_ERROR "${arguments}: expected a non-zero status before any run and '${expected}', got (${rc}):\n${log}\n${err}")
+    endif()
+  endforeach()
+  execute_process(COMMAND ${SWEEP_EXE} --backend serial --sweep-preloads -1,0 --duration ${duration} --out ${out}/none
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
+  file(READ ${out}/none/sweep.json json)
+  if(rc EQUAL 0 OR NOT log MATCHES "sweep optimum: none" OR NOT json MATCHES "\"optimum\": null"
+     OR NOT err MATCHES "every preload failed")
+    message(FATAL_ERROR "a sweep where every item fails (${rc}):\n${log}\n${err}\n${json}")
+  endif()
+  return()
+endif()
+
 function(read_sweep_csv path var)
   file(STRINGS ${path} lines)
   set(result "")
