@@ -12,6 +12,7 @@
 #include <stickslip/sweep.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,13 +56,41 @@ inline RunSettings settings_for_duration(RunSettings s, double duration) {
   return s;
 }
 
-/// "a,b,c" as numbers (std::stod each).
-inline std::vector<double> parse_list(const std::string& s) {
-  std::vector<double> v;
-  std::stringstream ss(s);
-  for (std::string item; std::getline(ss, item, ',');) v.push_back(std::stod(item));
+/// `text` as a number (all of it: "2x" is not 2); throws std::invalid_argument naming `what`
+/// (e.g. the option) otherwise.
+inline double parse_number(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size())
+    throw std::invalid_argument(what + " expects a number, got '" + text + "'");
   return v;
 }
+
+/// `text` as an integer in [lo, hi] (all of it); throws std::invalid_argument naming `what` and
+/// saying `why` the range is what it is otherwise.
+inline long long parse_integer(const std::string& text, const std::string& what, long long lo, long long hi,
+                               const std::string& why) {
+  char* end = nullptr;
+  errno = 0;
+  const long long v = std::strtoll(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || v < lo || v > hi)
+    throw std::invalid_argument(what + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                "]" + (why.empty() ? "" : " (" + why + ")") + ", got '" + text + "'");
+  return v;
+}
+
+/// "a,b,c" as numbers; throws std::invalid_argument naming `what` and the bad item.
+inline std::vector<double> parse_list(const std::string& s, const std::string& what = "the list a,b,...") {
+  std::vector<double> v;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    v.push_back(parse_number(item, what + " (item " + std::to_string(v.size() + 1) + ")"));
+  if (v.empty()) throw std::invalid_argument(what + " expects numbers a,b,..., got '" + s + "'");
+  return v;
+}
+
+/// The largest sweep (--sweep's count): each preload is a run of the sweep's duration.
+constexpr long long kMaxSweepCount = 100000;
 
 /// The value after option argv[i] (advancing i to it); throws std::invalid_argument when it is missing.
 inline std::string next_argument(int argc, char** argv, int& i) {
@@ -69,11 +98,23 @@ inline std::string next_argument(int argc, char** argv, int& i) {
   return argv[++i];
 }
 
-/// --sweep's "lo:hi:count" into lo, hi, count.
-/// Throws std::invalid_argument unless 0 < lo < hi and count >= 2.
+/// --sweep's "lo:hi:count" into lo, hi, count. Throws std::invalid_argument naming --sweep
+/// unless lo and hi are finite numbers with 0 < lo < hi and count an integer in
+/// [2, kMaxSweepCount].
 inline void parse_sweep_range(const std::string& s, double& lo, double& hi, int& count) {
-  if (std::sscanf(s.c_str(), "%lf:%lf:%d", &lo, &hi, &count) != 3 || count < 2 || !(hi > lo) || !(lo > 0))
-    throw std::invalid_argument("--sweep expects lo:hi:count with 0 < lo < hi and count >= 2");
+  const std::string expects = "--sweep expects lo:hi:count with finite 0 < lo < hi and 2 <= count <= " +
+                              std::to_string(kMaxSweepCount) + ", got '" + s + "'";
+  const std::size_t a = s.find(':'), b = a == std::string::npos ? a : s.find(':', a + 1);
+  if (b == std::string::npos) throw std::invalid_argument(expects);
+  try {
+    lo = parse_number(s.substr(0, a), "--sweep");
+    hi = parse_number(s.substr(a + 1, b - a - 1), "--sweep");
+    count = static_cast<int>(
+        parse_integer(s.substr(b + 1), "--sweep", 2, kMaxSweepCount, "each preload is a run"));
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument(expects);
+  }
+  if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi)) throw std::invalid_argument(expects);
 }
 
 /// count preloads from lo to hi, log-spaced (or linearly).
@@ -104,7 +145,12 @@ inline std::string sweep_row(const RunRecord& r) {
 }
 
 /// The sweep's work item: the scene of `base` at this preload run with `settings`, as a row.
+/// Throws std::invalid_argument naming the preload unless it is finite and > 0 (the damper mass
+/// is N0 / (share r Omega^2)).
 inline std::string sweep_item(const BladeParameters& base, const RunSettings& settings, double preload) {
+  if (!(preload > 0) || !std::isfinite(preload))
+    throw std::invalid_argument("preload_N = " + fmt(preload) +
+                                ": a preload must be finite and > 0 (the damper mass is N0 / (share r Omega^2))");
   BladeParameters p = base;
   p.preload = preload;
   BladeScene scene = make_blade_scene(p);
@@ -156,16 +202,25 @@ inline void write_sweep_files(const std::string& out, double duration, const std
                                outcomes);
   }
   const std::vector<SweepPoint> points = sweep_points(preloads, outcomes);
-  std::size_t best = 0;
+  // The optimum: the least finite E (none when no run has one: every item failed, or no run
+  // reached its energy window).
+  std::optional<std::size_t> best;
   for (std::size_t k = 0; k < points.size(); ++k)
     if (std::isfinite(points[k].energy_density) &&
-        (!std::isfinite(points[best].energy_density) || points[k].energy_density < points[best].energy_density))
+        (!best || points[k].energy_density < points[*best].energy_density))
       best = k;
-  j << "{\n  \"duration_s\": " << jnum(duration) << ",\n  \"optimum\": {\"preload_N\": " << jnum(points[best].preload)
-    << ", \"energy_density_m2\": " << jnum(points[best].energy_density) << ", \"regime\": \"" << points[best].regime
-    << "\"},\n  \"regime_map\": [";
-  std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\nregime map:\n", points[best].preload,
-              points[best].energy_density, points[best].regime.c_str());
+  j << "{\n  \"duration_s\": " << jnum(duration) << ",\n  \"optimum\": ";
+  if (best) {
+    const SweepPoint& b = points[*best];
+    j << "{\"preload_N\": " << jnum(b.preload) << ", \"energy_density_m2\": " << jnum(b.energy_density)
+      << ", \"regime\": \"" << b.regime << "\"}";
+    std::printf("sweep optimum: N0 = %.2f N, E = %.4e m^2 (%s)\n", b.preload, b.energy_density, b.regime.c_str());
+  } else {
+    j << "null";
+    std::printf("sweep optimum: none (no run has a finite E)\n");
+  }
+  j << ",\n  \"regime_map\": [";
+  std::printf("regime map:\n");
   // Regime map: contiguous preload ranges with the same regime.
   std::size_t start = 0;
   for (std::size_t k = 1; k <= points.size(); ++k) {

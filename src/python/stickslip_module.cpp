@@ -2,6 +2,8 @@
 // with any integrator returning histories as numpy arrays, events, the energy audit, per-damper
 // statistics and trade_study(). Exceptions keep their messages: std::invalid_argument becomes
 // ValueError, other std::exception types their pybind11 counterparts (RuntimeError, ...).
+#include "call_guard.hpp"
+
 #include <stickslip/stickslip.hpp>
 
 #include <pybind11/eigen.h>
@@ -19,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -50,6 +53,10 @@ using System = FrictionDampedSystem<double>;
 using State = System::State;
 using Mode = System::Mode;
 using Law = FrictionLawVariant<double>;
+using stickslip_python::copy_of;
+using stickslip_python::PySystem;
+using stickslip_python::SignalCheck;
+using stickslip_python::with_system;
 
 /// A DamperStates as a Python list of ContactState.
 std::vector<ContactState> to_list(const Mode& mode) {
@@ -141,17 +148,17 @@ py::array_t<T> stack(const Rows& rows, Index cols, Get get) {
 }
 
 /// simulate()'s observer: samples (t, x, mode, probes, forces after evaluate_from), transitions,
-/// and DamperStatistics when a window is given.
+/// and DamperStatistics when a window is given; stops the run when a signal handler raised.
 class Recorder {
  public:
   Recorder(System& system, Run& run, std::vector<System::Vector> probe_shapes, bool record_states,
-           double evaluate_from, std::optional<DamperStatistics<System>>& statistics)
+           double evaluate_from, std::optional<DamperStatistics<System>>& statistics, SignalCheck& signals)
       : system_(system), run_(run), shapes_(std::move(probe_shapes)), record_states_(record_states),
-        evaluate_from_(evaluate_from), statistics_(statistics) {}
+        evaluate_from_(evaluate_from), statistics_(statistics), signals_(signals) {}
 
   bool on_step(double t, const State& x, const Mode& mode) {
     if (statistics_) statistics_->on_step(t, x, mode);
-    return true;
+    return !signals_();
   }
   void on_event(const EventRecord<double, Mode>& record, const State& x_after) {
     run_.transitions.push_back(Transition{record.t, to_list(record.from), to_list(record.to)});
@@ -173,7 +180,7 @@ class Recorder {
       run_.y.push_back(e.y);
       run_.X.push_back(e.X);
     }
-    return true;
+    return !signals_();
   }
 
  private:
@@ -183,22 +190,24 @@ class Recorder {
   bool record_states_;
   double evaluate_from_;
   std::optional<DamperStatistics<System>>& statistics_;
+  SignalCheck& signals_;
 };
 
 /// simulate() from (mode, t0, x0) - by default the system's initial state made consistent - to
-/// t_end, recording as asked. The GIL is released while the stepper runs.
-Run run_simulation(System& system, double t_end, const RunOptions<double>& options, double t0,
+/// t_end, recording as asked. The GIL is released and the system's lock held while the stepper
+/// runs; Ctrl-C stops it (KeyboardInterrupt).
+Run run_simulation(PySystem& py_system, double t_end, const RunOptions<double>& options, double t0,
                    std::optional<State> x0, std::optional<std::vector<ContactState>> mode0,
                    const std::vector<Probe>& probes, bool record_states, double evaluate_from,
                    std::optional<StatisticsWindow<double>> window, bool consistent) {
-  Run run;
-  State x = x0 ? *x0 : system.initial_state();
-  Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
-  check_start(system, mode, x, "simulate");
-  std::vector<System::Vector> shapes;
-  for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
-  {
-    py::gil_scoped_release release;
+  return with_system(py_system, [&](SignalCheck& signals) {
+    System& system = py_system;
+    Run run;
+    State x = x0 ? *x0 : system.initial_state();
+    Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
+    check_start(system, mode, x, "simulate");
+    std::vector<System::Vector> shapes;
+    for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
     if (consistent && !system.make_consistent(mode, t0, x)) {
       run.status = Status::StoppedBySystem;
       run.message = "inconsistent or lifted-off initial contact state at t0";
@@ -210,7 +219,7 @@ Run run_simulation(System& system, double t_end, const RunOptions<double>& optio
     run.E0 = system.options().energy_audit ? system.mechanical_energy(mode, t0, x) : 0.0;
     std::optional<DamperStatistics<System>> statistics;
     if (window) statistics.emplace(system, mode, t0, x, *window);
-    Recorder recorder(system, run, std::move(shapes), record_states, evaluate_from, statistics);
+    Recorder recorder(system, run, std::move(shapes), record_states, evaluate_from, statistics, signals);
     auto result = simulate(system, mode, t0, x, t_end, options, recorder);
     run.status = result.status;
     run.message = result.message;
@@ -221,8 +230,8 @@ Run run_simulation(System& system, double t_end, const RunOptions<double>& optio
     if (system.options().energy_audit) run.energy = system.energy_balance(result.mode, result.t, result.x, run.E0);
     if (statistics)
       for (Index i = 0; i < statistics->num_dampers(); ++i) run.statistics.push_back(statistics->statistics(i));
-  }
-  return run;
+    return run;
+  });
 }
 
 /// RunOptions from keyword arguments (the StepperOptions field names and the integrator by name).
@@ -430,6 +439,13 @@ void bind_dampers(py::module_& m) {
       .def_readwrite("refine_stale_factorisation", &Options::refine_stale_factorisation);
 }
 
+/// A FrictionDampedSystem property of a PySystem (pybind11 does not adapt the base's noexcept
+/// member functions to the derived class).
+template <auto getter>
+decltype(auto) system_getter(const PySystem& system) {
+  return (static_cast<const System&>(system).*getter)();
+}
+
 void bind_system(py::module_& m) {
   py::class_<System::ContactEvent>(m, "ContactEvent", "One damper's contact switch.")
       .def_readonly("t", &System::ContactEvent::t)
@@ -449,67 +465,81 @@ void bind_system(py::module_& m) {
       .value("LiftOff", System::StopReason::LiftOff)
       .value("LeftMember", System::StopReason::LeftMember)
       .value("NoConsistentState", System::StopReason::NoConsistentState);
-  py::class_<System>(m, "FrictionDampedSystem", "Frame modes + friction dampers + loads (paper eqs 26-29).")
+  // PySystem: the system and the lock of the calls that run or evaluate it (call_guard.hpp).
+  py::class_<PySystem>(m, "FrictionDampedSystem",
+                       "Frame modes + friction dampers + loads (paper eqs 26-29). Calls that run or evaluate one "
+                       "system from several threads run one after the other (docs/python.md).")
       .def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<System::Damper>,
                     std::vector<System::Load>, const ModelOptions<double>&>(),
            py::arg("frame"), py::arg("basis"), py::arg("dampers"), py::arg("loads") = std::vector<System::Load>{},
            py::arg("options") = ModelOptions<double>{})
-      .def_property_readonly("num_modes", &System::num_modes)
-      .def_property_readonly("num_dampers", &System::num_dampers)
-      .def_property_readonly("state_size", &System::state_size)
-      .def_property_readonly("q_offset", &System::q_offset)
-      .def_property_readonly("qd_offset", &System::qd_offset)
-      .def_property_readonly("x_offset", &System::x_offset)
-      .def_property_readonly("xd_offset", &System::xd_offset)
-      .def_property_readonly("contact_offset", &System::contact_offset)
-      .def_property_readonly("flight_offset", &System::flight_offset)
-      .def_property_readonly("num_separable", &System::num_separable)
-      .def_property_readonly("energy_offset", &System::energy_offset)
-      .def_property_readonly("options", &System::options)
-      .def_property_readonly("dampers", &System::dampers)
-      .def_property_readonly("omega_squared", &System::omega_squared)
+      .def_property_readonly("num_modes", &system_getter<&System::num_modes>)
+      .def_property_readonly("num_dampers", &system_getter<&System::num_dampers>)
+      .def_property_readonly("state_size", &system_getter<&System::state_size>)
+      .def_property_readonly("q_offset", &system_getter<&System::q_offset>)
+      .def_property_readonly("qd_offset", &system_getter<&System::qd_offset>)
+      .def_property_readonly("x_offset", &system_getter<&System::x_offset>)
+      .def_property_readonly("xd_offset", &system_getter<&System::xd_offset>)
+      .def_property_readonly("contact_offset", &system_getter<&System::contact_offset>)
+      .def_property_readonly("flight_offset", &system_getter<&System::flight_offset>)
+      .def_property_readonly("num_separable", &system_getter<&System::num_separable>)
+      .def_property_readonly("energy_offset", &system_getter<&System::energy_offset>)
+      .def_property_readonly("options", &system_getter<&System::options>)
+      .def_property_readonly("dampers", &system_getter<&System::dampers>)
+      .def_property_readonly("omega_squared", &system_getter<&System::omega_squared>)
       .def("point_shape", &System::point_shape, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
            "Row psi with psi^T q the displacement of the point along `direction`.")
       .def("initial_state", &System::initial_state)
-      .def("requested_mode", [](const System& s) { return to_list(s.requested_mode()); })
+      .def("requested_mode", [](const PySystem& s) { return to_list(s.requested_mode()); })
       .def(
           "make_consistent",
-          [](System& s, std::vector<ContactState> mode, double t, State x) {
+          [](PySystem& s, std::vector<ContactState> mode, double t, State x) {
             Mode md = to_mode(mode);
-            const bool ok = s.make_consistent(md, t, x);
+            const bool ok = with_system(s, [&](SignalCheck&) { return s.make_consistent(md, t, x); });
             return py::make_tuple(ok, to_list(md), x);
           },
           py::arg("mode"), py::arg("t"), py::arg("x"), "(ok, mode, x) made consistent at t.")
       .def(
           "evaluate",
-          [](System& s, const std::vector<ContactState>& mode, double t, const State& x) {
+          [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
             const Mode md = to_mode(mode);
-            s.validate_state(md, x, "FrictionDampedSystem.evaluate");
-            const auto& e = s.evaluate(md, t, x);
+            const System::Evaluation e = with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, "FrictionDampedSystem.evaluate");
+              return s.evaluate(md, t, x);  // a copy, made under the lock
+            });
             py::dict d;
             d["qdd"] = e.qdd, d["N"] = e.N, d["f"] = e.f, d["V"] = e.V, d["xdd"] = e.xdd, d["X"] = e.X;
             d["slope"] = e.slope, d["y"] = e.y;
             return d;
           },
           py::arg("mode"), py::arg("t"), py::arg("x"), "Forces and kinematics of the dampers (dict of arrays).")
-      .def("events", &System::events, "Contact switches logged since construction or clear_events().")
-      .def("clear_events", &System::clear_events)
-      .def_property_readonly("stop_reason", &System::stop_reason)
-      .def_property_readonly("stop_damper", &System::stop_damper)
+      .def(
+          "events",
+          [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.events(); }); },
+          "Contact switches logged since construction or clear_events().")
+      .def("clear_events", [](PySystem& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); })
+      .def_property_readonly(
+          "stop_reason", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_reason(); }); })
+      .def_property_readonly(
+          "stop_damper", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_damper(); }); })
       .def(
           "mechanical_energy",
-          [](System& s, const std::vector<ContactState>& mode, double t, const State& x) {
+          [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
             const Mode md = to_mode(mode);
-            s.validate_state(md, x, "FrictionDampedSystem.mechanical_energy");
-            return s.mechanical_energy(md, t, x);
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, "FrictionDampedSystem.mechanical_energy");
+              return s.mechanical_energy(md, t, x);
+            });
           },
           py::arg("mode"), py::arg("t"), py::arg("x"))
       .def(
           "energy_balance",
-          [](System& s, const std::vector<ContactState>& mode, double t, const State& x, double E0) {
+          [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x, double E0) {
             const Mode md = to_mode(mode);
-            s.validate_state(md, x, "FrictionDampedSystem.energy_balance");
-            return s.energy_balance(md, t, x, E0);
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, "FrictionDampedSystem.energy_balance");
+              return s.energy_balance(md, t, x, E0);
+            });
           },
           py::arg("mode"), py::arg("t"), py::arg("x"), py::arg("E0"));
 }
@@ -650,7 +680,8 @@ void bind_simulate(py::module_& m) {
         py::arg("evaluate_from") = std::numeric_limits<double>::infinity(), py::arg("statistics") = py::none(),
         py::arg("consistent") = true,
         "Runs the system from (mode, t0, x0) (default: its initial state) to t_end; samples every "
-        "options.output_interval (states, modes, probes; forces N, f, V, y, X from evaluate_from on).");
+        "options.output_interval (states, modes, probes; forces N, f, V, y, X from evaluate_from on). The GIL is "
+        "released and calls on one system run one after the other; Ctrl-C stops the call (KeyboardInterrupt).");
 }
 
 void bind_trade_study(py::module_& m) {
@@ -686,8 +717,8 @@ void bind_trade_study(py::module_& m) {
              v.name = std::move(name);
              v.run = run;
              v.setup = [setup, name = v.name]() {
-               System sys =
-                   cast_as<System>(setup(), "TradeVariant " + name + ": setup() must return a FrictionDampedSystem");
+               System sys = copy_of(
+                   cast_as<const PySystem&>(setup(), "TradeVariant " + name + ": setup() must return a FrictionDampedSystem"));
                State x = sys.initial_state();
                Mode mode = sys.requested_mode();
                if (!sys.make_consistent(mode, 0.0, x))
@@ -775,6 +806,33 @@ PyOrbit to_py(const PeriodicOrbit<System>& orbit) {
   return out;
 }
 
+/// The most parts continue_orbits takes: 4 x the hardware threads (each part is a std::thread and
+/// a copy of the system; more parts than cores only add copies, threads and joins).
+int max_split_parts() { return 4 * static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+/// The most memory poincare_sections' record may take: 1 GiB.
+constexpr double kMaxSectionBytes = 1024.0 * 1024.0 * 1024.0;
+
+/// ValueError naming record_periods when the sections (record_periods states of state_size
+/// doubles, kept twice: the C++ record and the returned array) would take more than
+/// kMaxSectionBytes.
+void check_section_memory(const std::string& where, long record_periods, Index state_size) {
+  const double per_section = 2.0 * 8.0 * static_cast<double>(state_size);
+  const long limit = static_cast<long>(kMaxSectionBytes / per_section);
+  if (record_periods > limit)
+    detail::throw_invalid(where,
+                          "record_periods must be <= " + std::to_string(limit) +
+                              " (the recorded sections take record_periods x state_size x 16 bytes: at most 1 GiB)",
+                          record_periods);
+}
+
+/// The run budget of the steady-state functions: max_steps step attempts per run (> 0).
+long checked_max_steps(long max_steps, const std::string& where) {
+  if (max_steps <= 0)
+    detail::throw_invalid(where, "max_steps must be > 0 (step attempts allowed per run)", max_steps);
+  return max_steps;
+}
+
 /// The periodic components the steady-state functions compare: `periodic` (ValueError naming it
 /// when empty - C++'s "all", here the audit integrals too - or out of range) or by default q,
 /// q', x_d, x_d' (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor
@@ -793,10 +851,11 @@ std::vector<Index> periodic_set(const System& system, const std::optional<std::v
 /// quadratures (docs/steady_state.md).
 ShootingOptions<double> shooting_options(const System& system, const std::optional<std::vector<Index>>& periodic,
                                          const std::string& monodromy, double tolerance, int max_iterations,
-                                         double rtol, double atol, const std::string& where) {
+                                         double rtol, double atol, long max_steps, const std::string& where) {
   ShootingOptions<double> opt;
   opt.stepper.rtol = rtol;
   opt.stepper.atol = atol;
+  opt.stepper.max_steps = checked_max_steps(max_steps, where);
   opt.tolerance = tolerance;
   opt.max_iterations = max_iterations;
   if (monodromy == "finite_difference") opt.monodromy = MonodromyMethod::FiniteDifference;
@@ -868,19 +927,26 @@ struct ContinuationCallbacks {
   const py::object* on_point = nullptr;    // None or on_point(point)
   const py::object* start = nullptr;       // None or start(system, p) -> (mode, t0, x0) (parts > 1)
 
+  // The continued systems are PySystems (continue_orbits' system and its copies for parts > 1),
+  // passed to the callables as themselves.
+  static py::object as_python(System& system) {
+    return py::cast(static_cast<PySystem*>(&system), py::return_value_policy::reference);
+  }
+
   void set(System& system, double p) const {
     py::gil_scoped_acquire gil;
-    const py::object r = (*parameter)(py::cast(&system, py::return_value_policy::reference), p);
-    if (!py::isinstance<System>(r))
+    const py::object r = (*parameter)(as_python(system), p);
+    if (!py::isinstance<PySystem>(r))
       throw py::type_error("continue_orbits: parameter(system, p) must return the FrictionDampedSystem at p, got " +
                            std::string(py::str(py::type::of(r).attr("__name__"))));
-    const System& next = r.cast<const System&>();
+    const PySystem& next = r.cast<const PySystem&>();
     if (&next == &system) return;
-    if (next.state_size() != system.state_size() || next.num_dampers() != system.num_dampers())
+    System copy = copy_of(next);  // under next's lock: another thread may be running it
+    if (copy.state_size() != system.state_size() || copy.num_dampers() != system.num_dampers())
       throw std::invalid_argument("continue_orbits: parameter(system, p) returned a system of another state size (" +
-                                  std::to_string(next.state_size()) + " instead of " +
+                                  std::to_string(copy.state_size()) + " instead of " +
                                   std::to_string(system.state_size()) + ")");
-    system = next;
+    system = std::move(copy);
   }
   double period_of(double p) const {
     if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked by continue_orbits
@@ -889,7 +955,7 @@ struct ContinuationCallbacks {
   }
   Mode mode_of(System& system, double t, const State& x, const Mode& previous) const {
     py::gil_scoped_acquire gil;
-    const py::object r = (*start_mode)(py::cast(&system, py::return_value_policy::reference), t, x, to_list(previous));
+    const py::object r = (*start_mode)(as_python(system), t, x, to_list(previous));
     const std::string what = "continue_orbits: start_mode(system, t, x, mode)";
     Mode mode = to_mode(cast_as<std::vector<ContactState>>(r, what + " must return a list of ContactState"));
     system.validate_state(mode, x, what.c_str());
@@ -901,7 +967,7 @@ struct ContinuationCallbacks {
   }
   SplitContinuation<System>::Guess guess(System& system, double p) const {
     py::gil_scoped_acquire gil;
-    const py::object r = (*start)(py::cast(&system, py::return_value_policy::reference), p);
+    const py::object r = (*start)(as_python(system), p);
     const std::string where = "continue_orbits: start(system, p)", what = where + " must return (mode, t0, x0)";
     const auto t = cast_as<std::tuple<py::object, py::object, py::object>>(r, what);
     SplitContinuation<System>::Guess g{
@@ -946,31 +1012,37 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("switches", &PyOrbit::switches, "per damper: its contact-state changes in one period");
   m.def(
       "find_periodic_orbit",
-      [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
-         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
-         double rtol, double atol) {
-        const ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
-                                                             atol, "find_periodic_orbit");
-        State x = x0 ? *x0 : system.initial_state();
-        Mode md = mode ? to_mode(*mode) : system.requested_mode();
-        check_start(system, md, x, "find_periodic_orbit");
-        py::gil_scoped_release release;
-        Shooting<System> shooting(system, opt);
-        return to_py(shooting.forced(md, t0, x, period));
+      [](PySystem& system, double period, double t0, std::optional<State> x0,
+         std::optional<std::vector<ContactState>> mode, std::optional<std::vector<Index>> periodic,
+         const std::string& monodromy, double tolerance, int max_iterations, double rtol, double atol, long max_steps) {
+        return with_system(system, [&](SignalCheck& signals) {
+          ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
+                                                         atol, max_steps, "find_periodic_orbit");
+          opt.interrupt = [&signals] { return signals(); };
+          State x = x0 ? *x0 : system.initial_state();
+          Mode md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, "find_periodic_orbit");
+          Shooting<System> shooting(system, opt);
+          return to_py(shooting.forced(md, t0, x, period));
+        });
       },
       py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
       py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
       py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       "Forced periodic orbit of the given period by shooting from (mode, t0, x0) (default: the system's initial "
       "state), with its monodromy and Floquet multipliers (Shooting::forced, docs/steady_state.md). periodic: the "
-      "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D).");
+      "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D); max_steps: step attempts "
+      "allowed per orbit run (a run beyond it fails: IntegrationFailed). The GIL is released; Ctrl-C stops the "
+      "call (KeyboardInterrupt).");
 
   py::enum_<ContinuationStatus>(m, "ContinuationStatus")
       .value("Completed", ContinuationStatus::Completed)
       .value("MaxPoints", ContinuationStatus::MaxPoints)
       .value("StepTooSmall", ContinuationStatus::StepTooSmall)
       .value("StartFailed", ContinuationStatus::StartFailed)
-      .value("Stopped", ContinuationStatus::Stopped);
+      .value("Stopped", ContinuationStatus::Stopped)
+      .value("Interrupted", ContinuationStatus::Interrupted);
   py::class_<PyContinuationPoint>(m, "ContinuationPoint", "One point of a branch (docs/steady_state.md).")
       .def_readonly("parameter", &PyContinuationPoint::parameter, "the parameter p")
       .def_readonly("step", &PyContinuationPoint::step, "the arclength step that reached it (0 at the start)")
@@ -1004,15 +1076,21 @@ void bind_steady_state(py::module_& m) {
           "the points' parameters (numpy)");
   m.def(
       "continue_orbits",
-      [](System& system, const py::object& parameter, double p0, double p_end, const py::object& period, double t0,
+      [](PySystem& system, const py::object& parameter, double p0, double p_end, const py::object& period, double t0,
          std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
          int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
-         const py::object& start) {
+         const py::object& start, long max_steps) {
         static const std::string where = "continue_orbits";
         if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
+        if (parts > max_split_parts())
+          detail::throw_invalid(where,
+                                "parts must be <= " + std::to_string(max_split_parts()) +
+                                    " (4 x the hardware threads: each part is a thread and a copy of the system, "
+                                    "and the speed-up is at most the number of cores)",
+                                parts);
         if (!start.is_none() && !PyCallable_Check(start.ptr()))
           throw std::invalid_argument(where + ": start must be None or a callable start(system, p)");
         if (!PyCallable_Check(parameter.ptr()))
@@ -1028,8 +1106,6 @@ void bind_steady_state(py::module_& m) {
         detail::require_finite(where, "p0", p0);
         detail::require_finite(where, "p_end", p_end);
         if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
-        const ShootingOptions<double> opt =
-            shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, where);
         ContinuationOptions<double> co;
         co.parameter_min = std::min(p0, p_end);
         co.parameter_max = std::max(p0, p_end);
@@ -1044,17 +1120,44 @@ void bind_steady_state(py::module_& m) {
         co.section_margin = section_margin;
         co.chord_iterations = chord_iterations;
         const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point, &start};
-        State x = x0 ? *x0 : system.initial_state();
-        Mode md = mode ? to_mode(*mode) : system.requested_mode();
-        check_start(system, md, x, where);
-        PyContinuation out;
-        // Parts 1 .. n-1 run on copies (made and destroyed with the GIL held: a load's Python
-        // time_function is copied with them).
-        std::vector<System> copies(static_cast<std::size_t>(parts - 1), system);
-        py::gil_scoped_release release;
-        if (parts > 1) {
-          std::vector<System*> systems{&system};
-          for (System& c : copies) systems.push_back(&c);
+        ShootingOptions<double> opt;
+        State x;
+        Mode md;
+        // parts > 1: the parts run on copies (made under the system's lock, destroyed with the GIL
+        // held: a load's Python time_function is copied with them), not on `system`, which is
+        // locked again at the end to take part 0's copy (the system at part 0's last point).
+        std::vector<PySystem> copies;
+        PyContinuation out = with_system(system, [&](SignalCheck& signals) {
+          opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps, where);
+          x = x0 ? *x0 : system.initial_state();
+          md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, where);
+          PyContinuation one;
+          if (parts > 1) {
+            copies.assign(static_cast<std::size_t>(parts), system);
+            return one;
+          }
+          opt.interrupt = [&signals] { return signals(); };
+          Continuation<System> cont(
+              system, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
+              co);
+          if (!start_mode.is_none())
+            cont.start_mode(
+                [&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
+          if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<System>& pt) { cb.point(pt); });
+          const auto result = cont.run(md, t0, x, p0);
+          one.status = result.status;
+          one.message = result.message;
+          one.points = to_py(result.points);
+          return one;
+        });
+        if (parts == 1) return out;
+        SignalCheck signals;
+        {
+          py::gil_scoped_release release;
+          opt.interrupt = [&signals] { return signals(); };
+          std::vector<System*> systems;
+          for (PySystem& c : copies) systems.push_back(&c);
           SplitContinuation<System> split(
               systems, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); },
               opt, co);
@@ -1075,18 +1178,9 @@ void bind_steady_state(py::module_& m) {
             out.parts.push_back(PyContinuationPart{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined,
                                                    r.cpu_seconds, to_py(result.dropped[k].points)});
           }
-          return out;
         }
-        Continuation<System> cont(
-            system, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
-            co);
-        if (!start_mode.is_none())
-          cont.start_mode([&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
-        if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<System>& pt) { cb.point(pt); });
-        const auto result = cont.run(md, t0, x, p0);
-        out.status = result.status;
-        out.message = result.message;
-        out.points = to_py(result.points);
+        signals.rethrow();
+        with_system(system, [&](SignalCheck&) { static_cast<System&>(system) = copies.front(); });
         return out;
       },
       py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,
@@ -1096,7 +1190,7 @@ void bind_steady_state(py::module_& m) {
       py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
       py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
-      py::arg("parts") = 1, py::arg("start") = py::none(),
+      py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
@@ -1107,9 +1201,10 @@ void bind_steady_state(py::module_& m) {
       "(SplitContinuation: part k starts at the k-th of n equal cuts of [p0, p_end], on its own thread and a copy "
       "of the system, and the parts are joined where one runs into the next one's start); start(system, p) -> "
       "(mode, t0, x0) gives each part's start guess (default: mode, t0, x0 above), on_point is then called as the "
-      "parts find their points (not in branch order) and Branch.parts tells what each part did. A Python "
-      "exception raised by a callable ends the run and propagates. The GIL is released during the run and "
-      "re-acquired for each callable.");
+      "parts find their points (not in branch order) and Branch.parts tells what each part did; parts is at most "
+      "4 x the hardware threads. max_steps: step attempts allowed per orbit run. A Python exception raised by a "
+      "callable ends the run and propagates. The GIL is released during the run and re-acquired for each "
+      "callable; Ctrl-C stops the call (KeyboardInterrupt).");
 
   py::enum_<PoincareStatus>(m, "PoincareStatus")
       .value("Periodic", PoincareStatus::Periodic)
@@ -1128,25 +1223,33 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("modes", &PyPoincare::modes, "the contact states at each section");
   m.def(
       "poincare_sections",
-      [](System& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
-         int transient_periods, int record_periods, int max_period, double tolerance,
-         std::optional<std::vector<Index>> periodic, double rtol, double atol) {
-        detail::require_positive("poincare_sections", "period", period);
-        PoincareOptions<double> opt;
-        opt.transient_periods = transient_periods;
-        opt.record_periods = record_periods;
-        opt.max_period = max_period;
-        opt.tolerance = tolerance;
-        opt.periodic = periodic_set(system, periodic, "poincare_sections");
-        opt.stepper.rtol = rtol;
-        opt.stepper.atol = atol;
-        const State x = x0 ? *x0 : system.initial_state();
-        const Mode md = mode ? to_mode(*mode) : system.requested_mode();
-        check_start(system, md, x, "poincare_sections");
-        PyPoincare out;
-        {
-          py::gil_scoped_release release;
-          const auto r = poincare_sections(system, md, t0, x, period, opt);
+      [](PySystem& system, double period, double t0, std::optional<State> x0,
+         std::optional<std::vector<ContactState>> mode, int transient_periods, int record_periods, int max_period,
+         double tolerance, std::optional<std::vector<Index>> periodic, double rtol, double atol, long max_steps) {
+        static const std::string where = "poincare_sections";
+        detail::require_positive(where, "period", period);
+        return with_system(system, [&](SignalCheck& signals) {
+          PoincareOptions<double> opt;
+          opt.transient_periods = transient_periods;
+          opt.record_periods = record_periods;
+          opt.max_period = max_period;
+          opt.tolerance = tolerance;
+          opt.periodic = periodic_set(system, periodic, where);
+          opt.stepper.rtol = rtol;
+          opt.stepper.atol = atol;
+          opt.stepper.max_steps = checked_max_steps(max_steps, where);
+          opt.interrupt = [&signals] { return signals(); };
+          check_section_memory(where, record_periods, system.state_size());
+          if (max_period >= 1 && 2LL * max_period > record_periods)
+            detail::throw_invalid(where,
+                                  "max_period must be <= record_periods / 2 = " + std::to_string(record_periods / 2) +
+                                      " (a period k is told from a record of at least 2k sections)",
+                                  max_period);
+          const State x = x0 ? *x0 : system.initial_state();
+          const Mode md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, where);
+          PyPoincare out;
+          const auto r = poincare_sections(static_cast<System&>(system), md, t0, x, period, opt);
           out.status = r.status;
           out.message = r.message;
           out.period = r.period;
@@ -1156,18 +1259,21 @@ void bind_steady_state(py::module_& m) {
           out.states.resize(static_cast<Index>(r.states.size()), x.size());
           for (std::size_t n = 0; n < r.states.size(); ++n) out.states.row(static_cast<Index>(n)) = r.states[n].transpose();
           for (const Mode& mn : r.modes) out.modes.push_back(to_list(mn));
-        }
-        return out;
+          return out;
+        });
       },
       py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
       py::arg("transient_periods") = 100, py::arg("record_periods") = 32, py::arg("max_period") = 8,
       py::arg("tolerance") = 1e-6, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       "Poincaré sections of the forced response from (mode, t0, x0) (default: the system's initial state): "
       "transient_periods whole periods, then the state at the next record_periods multiples of `period`, and the "
       "smallest k <= max_period with which they repeat to `tolerance` (relative, over the components `periodic`, "
       "default q, q', x_d, x_d'): a period-k response, or not periodic (quasi-periodic, chaotic or still "
       "transient). A periodic section is a guess for find_periodic_orbit with period k T (poincare_sections, "
-      "docs/steady_state.md).");
+      "docs/steady_state.md). record_periods is bounded by the record's memory (record_periods x state_size x 16 "
+      "bytes <= 1 GiB); max_steps: step attempts allowed per period's run. The GIL is released; Ctrl-C stops the "
+      "call (KeyboardInterrupt).");
 }
 
 }  // namespace

@@ -4,14 +4,20 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 namespace sweep_test {
 
@@ -83,6 +89,62 @@ TEST(Sweep, EmptyItemOrKeyIsRejected) {
   EXPECT_THROW(write_sweep_csv(os, "k", SweepKey{}, "a", {}), std::invalid_argument);
   // No items: nothing runs, an empty result.
   EXPECT_TRUE(run_sweep_threads(0, leibniz_item, 4).empty());
+}
+
+// The journal: a sweep that ends early (here: after items 0 and 3, the last line cut while it was
+// written) is resumed with the rest of its items, and the outcomes then equal an uninterrupted
+// run's; rows and errors with line breaks and backslashes survive; another sweep's journal, an
+// item index out of range and a garbled line are refused naming the file.
+TEST(SweepJournal, ResumingKeepsWhatFinishedAndRunsTheRest) {
+  constexpr std::size_t n = 9;
+  const auto item = [](std::size_t k) {
+    if (k == 4) throw std::invalid_argument("item 4:\nbad \\ value");
+    return k == 3 ? std::string("3,multi\nline \\n") : leibniz_item(k);
+  };
+  const auto reference = run_sweep_serial(n, item);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("sweep_journal_test_" + std::to_string(::getpid()))).string();
+  {
+    SweepJournal journal(path, "settings A", false);
+    journal.record(0, reference[0]);
+    journal.record(3, reference[3]);
+    journal.record(4, reference[4]);
+  }
+  {  // killed while writing item 4's line: its line is cut short
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() - 5);
+  }
+  auto done = read_sweep_journal(path, "settings A", n);
+  ASSERT_EQ(done.size(), n);
+  std::vector<std::size_t> pending;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!done[k]) pending.push_back(k);
+  EXPECT_EQ(pending, (std::vector<std::size_t>{1, 2, 4, 5, 6, 7, 8}));
+  {
+    SweepJournal journal(path, "settings A", true);
+    for (std::size_t k : pending) journal.record(k, run_sweep_item(item, k));
+  }
+  done = read_sweep_journal(path, "settings A", n);
+  for (std::size_t k = 0; k < n; ++k) {
+    ASSERT_TRUE(done[k].has_value()) << k;
+    EXPECT_EQ(done[k]->ok, reference[k].ok) << k;
+    EXPECT_EQ(done[k]->row, reference[k].row) << k;
+    EXPECT_EQ(done[k]->error, reference[k].error) << k;
+  }
+  EXPECT_EQ(reference[4].error, "item 4:\nbad \\ value");
+  // Not this sweep's journal, or not one of its items.
+  EXPECT_THROW(read_sweep_journal(path, "settings B", n), std::invalid_argument);
+  EXPECT_THROW(read_sweep_journal(path, "settings A", 5), std::invalid_argument);
+  std::ofstream(path, std::ios::app) << "x ok 1\n";
+  EXPECT_THROW(read_sweep_journal(path, "settings A", n), std::invalid_argument);
+  // A new journal (not resumed) starts empty; a missing file is an empty journal.
+  { SweepJournal fresh(path, "settings A", false); }
+  done = read_sweep_journal(path, "settings A", n);
+  EXPECT_TRUE(std::none_of(done.begin(), done.end(), [](const auto& d) { return d.has_value(); }));
+  std::filesystem::remove(path);
+  EXPECT_EQ(read_sweep_journal(path, "settings A", n).size(), n);
 }
 
 }  // namespace sweep_test

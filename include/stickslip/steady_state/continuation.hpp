@@ -95,7 +95,8 @@ enum class ContinuationStatus : std::uint8_t {
   MaxPoints,     ///< options.max_points reached inside the range
   StepTooSmall,  ///< the corrector failed down to options.min_step (the last failure is reported)
   StartFailed,   ///< no orbit at the start parameter (the shooting failure is reported)
-  Stopped        ///< the stop_when rule ended the branch (SplitContinuation: a join)
+  Stopped,       ///< the stop_when rule ended the branch (SplitContinuation: a join)
+  Interrupted    ///< ShootingOptions::interrupt stopped the run (the points so far are kept)
 };
 
 /// Human-readable name of a continuation status.
@@ -106,6 +107,7 @@ inline const char* to_string(ContinuationStatus s) noexcept {
     case ContinuationStatus::StepTooSmall: return "step_too_small";
     case ContinuationStatus::StartFailed: return "start_failed";
     case ContinuationStatus::Stopped: return "stopped";
+    case ContinuationStatus::Interrupted: return "interrupted";
   }
   return "unknown";
 }
@@ -211,6 +213,14 @@ class Continuation {
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
+  // Whether ShootingOptions::interrupt asks to stop (then the result's status and message).
+  bool interrupted(Result& result, Scalar p) const {
+    const InterruptCheck& stop = shooting_.options().interrupt;
+    if (!stop || !stop()) return false;
+    result.status = ContinuationStatus::Interrupted;
+    result.message = "interrupted: options.interrupt returned true after p = " + detail::format_value(p);
+    return true;
+  }
   // Orbit run at (x, p) with the monodromy.
   PeriodRun<System> shoot(const Mode& mode, Scalar t0, const State& x, Scalar p, bool monodromy) {
     set_(sys_, p);
@@ -445,6 +455,7 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
   Mode mode = mode0;
   PeriodicOrbit<System> orbit = shooting_.forced(mode, t0, x0_guess, T0);
   if (!orbit.ok()) {
+    if (interrupted(result, p0)) return result;
     result.status = ContinuationStatus::StartFailed;
     result.message = "no periodic orbit at p0 = " + detail::format_value(p0) + ": " + orbit.message;
     return result;
@@ -492,6 +503,10 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
 
   Scalar ds = opt_.initial_step;
   while (static_cast<int>(result.points.size()) < opt_.max_points) {
+    if (interrupted(result, p)) {
+      set_(sys_, p);
+      return result;
+    }
     const Vector y_pred = pack(x, p) + ds * tau;
     State x_pred = x, x_new = x;
     Scalar p_pred = 0, p_new = 0;
@@ -511,6 +526,10 @@ auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_gue
       }
     }
     if (!ok) {
+      if (interrupted(result, p)) {
+        set_(sys_, p);
+        return result;
+      }
       ds /= Scalar(2);
       if (ds < opt_.min_step) {
         set_(sys_, p);

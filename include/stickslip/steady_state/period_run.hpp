@@ -48,6 +48,7 @@ struct PeriodRun {
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> amplitudes;
   StepperStats stats;   ///< counters (of the nominal run)
   long grazing_events = 0;  ///< events whose saltation was skipped (tangent flow)
+  bool interrupted = false;  ///< options.interrupt stopped the run (status StoppedByObserver)
   /// status == Status::Success.
   bool ok() const noexcept { return status == Status::Success; }
 };
@@ -92,7 +93,8 @@ struct OrbitObserver {
 /// options.samples_per_period for the amplitudes). With `monodromy`, also M = dx(t0 + T)/dx(t0):
 /// options.monodromy == Variational integrates VariationalSystem<System> (one run);
 /// FiniteDifference re-shoots 2 n perturbed orbits (column j = (x(T; x0 + h e_j) -
-/// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)). The numerical outcome is in
+/// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)). options.interrupt is asked
+/// after every step of these runs (true: the run stops, `interrupted`). The numerical outcome is in
 /// the result's status; throws std::invalid_argument for non-finite or empty x0, non-finite t0,
 /// T <= 0 or invalid options.
 template <class System>
@@ -115,17 +117,23 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   PeriodRun<System> run;
   const std::vector<Eigen::Index> comps = options.amplitude_indices(n);
   run.amplitudes.setZero(static_cast<Eigen::Index>(comps.size()));
-  detail::OrbitObserver<Scalar, Mode> obs{&comps, &run.amplitudes, &run.events};
+  detail::OrbitObserver<Scalar, Mode> orbit_obs{&comps, &run.amplitudes, &run.events};
+  detail::InterruptibleObserver<detail::OrbitObserver<Scalar, Mode>> obs{orbit_obs, options.interrupt};
+  // The run's status and message, "interrupted" when options.interrupt stopped it.
+  auto finish = [&](const auto& r) {
+    run.status = r.status;
+    run.interrupted = obs.interrupted;
+    run.message = obs.interrupted ? detail::interrupted_message(r.t) : r.message;
+  };
   StepperOptions<Scalar> so = options.stepper;
   if (options.samples_per_period > 0) so.output_interval = T / Scalar(options.samples_per_period);
-  obs.track(x0);
+  orbit_obs.track(x0);
 
   if (monodromy && options.monodromy == MonodromyMethod::Variational) {
     VariationalSystem<System> var(system, n, options.fd_step, options.control_sensitivities);
     HybridStepper<VariationalSystem<System>, DormandPrince54> stepper(var, so);
     const auto r = stepper.integrate(mode, t0, var.initial_state(x0), t0 + T, obs);
-    run.status = r.status;
-    run.message = r.message;
+    finish(r);
     run.x_end = r.x.head(n);
     run.mode_end = r.mode;
     run.stats = r.stats;
@@ -135,8 +143,7 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   }
   HybridStepper<System, DormandPrince54> stepper(system, so);
   const auto r = stepper.integrate(mode, t0, x0, t0 + T, obs);
-  run.status = r.status;
-  run.message = r.message;
+  finish(r);
   run.x_end = r.x;
   run.mode_end = r.mode;
   run.stats = r.stats;
@@ -146,17 +153,21 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   HybridStepper<System, DormandPrince54> fd_stepper(system, plain);
   run.monodromy.resize(n, n);
   typename System::State xp = x0;
+  NullObserver none;
+  detail::InterruptibleObserver<NullObserver> fd_obs{none, options.interrupt};
   for (Eigen::Index j = 0; j < n; ++j) {
     const Scalar h = options.fd_step * std::max(Scalar(1), std::abs(x0[j]));
     xp[j] = x0[j] + h;
-    const auto rp = fd_stepper.integrate(mode, t0, xp, t0 + T);
+    const auto rp = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
     xp[j] = x0[j] - h;
-    const auto rm = fd_stepper.integrate(mode, t0, xp, t0 + T);
+    const auto rm = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
     xp[j] = x0[j];
     if (!rp.ok() || !rm.ok()) {
       const auto& bad = rp.ok() ? rm : rp;
       run.status = bad.status;
-      run.message = "finite-difference monodromy, column " + std::to_string(j) + ": " + bad.message;
+      run.interrupted = fd_obs.interrupted;
+      run.message = "finite-difference monodromy, column " + std::to_string(j) + ": " +
+                    (fd_obs.interrupted ? detail::interrupted_message(bad.t) : bad.message);
       return run;
     }
     run.monodromy.col(j) = (rp.x - rm.x) / (Scalar(2) * h);

@@ -7,6 +7,7 @@
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/dormand_prince54.hpp>
 #include <stickslip/ode/hybrid_stepper.hpp>
+#include <stickslip/steady_state/interrupt.hpp>
 #include <stickslip/steady_state/shooting_options.hpp>
 
 #include <Eigen/Core>
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace stickslip {
@@ -33,6 +35,9 @@ struct PoincareOptions {
   std::vector<Eigen::Index> periodic;
   /// Options of the runs (HybridStepper with DormandPrince54).
   StepperOptions<Scalar> stepper{};
+  /// Asked after every step of the runs (empty: never); true stops them: status
+  /// IntegrationFailed, the message starting "interrupted" (see InterruptCheck).
+  InterruptCheck interrupt;
 
   /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range,
   /// for state size n.
@@ -41,7 +46,7 @@ struct PoincareOptions {
     if (transient_periods < 0)
       detail::throw_invalid(where, "options.transient_periods must be >= 0", transient_periods);
     if (max_period < 1) detail::throw_invalid(where, "options.max_period must be >= 1", max_period);
-    if (record_periods < 2 * max_period)
+    if (static_cast<long long>(record_periods) < 2LL * max_period)  // (2 max_period may overflow int)
       detail::throw_invalid(where, "options.record_periods must be >= 2 options.max_period",
                             record_periods);
     detail::require_positive(where, "options.tolerance", tolerance);
@@ -121,12 +126,14 @@ PoincareSections<System> poincare_sections(System& system, const typename System
   typename System::State x = x0;
   Scalar t = t0;
   // Period by period (a section at each whole period, as a sampled run would only approach it).
-  auto run = [&](auto& obs) {
+  auto run = [&](auto& inner) {
+    detail::InterruptibleObserver<std::remove_reference_t<decltype(inner)>> obs{inner, options.interrupt};
     const auto r = stepper.integrate(m, t, x, t + T, obs);
     if (!r.ok()) {
       out.status = PoincareStatus::IntegrationFailed;
-      out.message = "the run over [" + detail::format_value(t) + ", " + detail::format_value(t + T) +
-                    "] failed: " + r.message;
+      out.message = obs.interrupted ? detail::interrupted_message(r.t)
+                                    : "the run over [" + detail::format_value(t) + ", " +
+                                          detail::format_value(t + T) + "] failed: " + r.message;
       return false;
     }
     t += T;

@@ -337,7 +337,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
       PeriodRun<System> trial = run_period(sys_, mode, t0, xt, Tt, opt_, true);
       ++runs;
       if (!trial.ok()) {
-        if (!last) continue;
+        if (!last && !trial.interrupted) continue;
         return run_failed(trial, it);
       }
       Vector rt;

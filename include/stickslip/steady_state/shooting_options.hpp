@@ -4,6 +4,7 @@
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/stepper_options.hpp>
+#include <stickslip/steady_state/interrupt.hpp>
 
 #include <Eigen/Core>
 
@@ -79,6 +80,10 @@ struct ShootingOptions {
   std::vector<Eigen::Index> amplitude_components;
   /// A multiplier with |mu| > 1 + multiplier_tolerance makes the orbit unstable.
   Scalar multiplier_tolerance = Scalar(1e-6);
+  /// Asked after every step of every orbit run (empty: never); true stops the computation: the
+  /// run ends with Status::StoppedByObserver and a message starting "interrupted", Shooting
+  /// returns IntegrationFailed, Continuation the status Interrupted (see InterruptCheck).
+  InterruptCheck interrupt;
 
   /// The indices 0 .. count-1 (e.g. the mechanical states of a system whose last components are
   /// quadratures).
