@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -137,6 +138,11 @@ Cli parse(int argc, char** argv) {
   bool demo = false, contact_given = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    // The option's value as a number / an integer in [lo, hi]; a bad value's error names the option.
+    const auto number = [&] { return blade::parse_number(need(i), a); };
+    const auto integer = [&](long long lo, long long hi = std::numeric_limits<int>::max(), const std::string& why = "") {
+      return static_cast<int>(blade::parse_integer(need(i), a, lo, hi, why));
+    };
     if (a == "--help" || a == "-h") {
       std::cout << kHelp << blade::contact_options_help();
       std::exit(0);
@@ -145,40 +151,40 @@ Cli parse(int argc, char** argv) {
       c.sweep = true;
       demo = true;
     } else if (a == "--preload") {
-      c.preloads.push_back(std::stod(need(i)));
+      c.preloads.push_back(number());
     } else if (a == "--preloads") {
-      for (double p : parse_list(need(i))) c.preloads.push_back(p);
+      for (double p : parse_list(need(i), a)) c.preloads.push_back(p);
     } else if (a == "--sweep") {
       blade::parse_sweep_range(need(i), c.sweep_lo, c.sweep_hi, c.sweep_count);
       c.sweep = true;
     } else if (a == "--sweep-linear") {
       c.sweep_log = false;
     } else if (a == "--sweep-duration") {
-      c.sweep_duration = std::stod(need(i));
+      c.sweep_duration = number();
     } else if (a == "--duration") {
-      c.settings.duration = std::stod(need(i));
+      c.settings.duration = number();
     } else if (a == "--modes") {
-      c.params.modes = std::stoi(need(i));
+      c.params.modes = integer(1);
     } else if (a == "--blade-elements") {
-      c.params.blade_elements = std::stoi(need(i));
+      c.params.blade_elements = integer(1);
     } else if (a == "--platform-elements") {
-      c.params.platform_elements = std::stoi(need(i));
+      c.params.platform_elements = integer(2);
     } else if (a == "--y0") {
-      c.params.y0 = std::stod(need(i));
+      c.params.y0 = number();
     } else if (a == "--damping") {
-      c.params.damping_ratio = std::stod(need(i));
+      c.params.damping_ratio = number();
     } else if (a == "--mu-s") {
-      c.params.mu_s = std::stod(need(i));
+      c.params.mu_s = number();
     } else if (a == "--mu-k") {
-      c.params.mu_k = std::stod(need(i));
+      c.params.mu_k = number();
     } else if (a == "--integrator") {
       c.settings.run.integrator = parse_integrator(need(i));
     } else if (a == "--rtol") {
-      c.settings.run.stepper.rtol = std::stod(need(i));
+      c.settings.run.stepper.rtol = number();
     } else if (a == "--atol") {
-      c.settings.run.stepper.atol = std::stod(need(i));
+      c.settings.run.stepper.atol = number();
     } else if (a == "--dt") {
-      c.settings.run.stepper.fixed_step = std::stod(need(i));
+      c.settings.run.stepper.fixed_step = number();
     } else if (a == "--events") {
       const std::string e = need(i);
       if (e == "root") c.settings.run.stepper.event_location = EventLocation::DenseRootFinding;
@@ -194,30 +200,27 @@ Cli parse(int argc, char** argv) {
       c.params.model.end_policy = EndPolicy::Extrapolate;
       contact_given = true;
     } else if (a == "--regularised") {
-      c.params.regularised_v_eps = std::stod(need(i));
+      c.params.regularised_v_eps = number();
     } else if (a == "--compare") {
       c.compare = need(i);
     } else if (a == "--compare-repeats") {
-      c.compare_repeats = std::stoi(need(i));
+      c.compare_repeats = integer(1);
     } else if (a == "--compare-reference-rtol") {
-      c.compare_reference_rtol = std::stod(need(i));
+      c.compare_reference_rtol = number();
     } else if (a == "--frc") {
       c.frc = blade::parse_frc_range(need(i));
     } else if (a == "--frc-points") {
       if (!c.frc) throw std::invalid_argument("--frc-points must follow --frc");
-      c.frc->max_points = std::stoi(need(i));
+      c.frc->max_points = integer(1);
     } else if (a == "--frc-newton") {
       if (!c.frc) throw std::invalid_argument("--frc-newton must follow --frc");
-      c.frc->max_newton_iterations = std::stoi(need(i));
-      if (c.frc->max_newton_iterations <= 0) throw std::invalid_argument("--frc-newton must be > 0");
+      c.frc->max_newton_iterations = integer(1);
     } else if (a == "--frc-parts") {
       if (!c.frc) throw std::invalid_argument("--frc-parts must follow --frc");
-      c.frc->parts = std::stoi(need(i));
-      if (c.frc->parts <= 0) throw std::invalid_argument("--frc-parts must be > 0");
+      c.frc->parts = integer(1);
     } else if (a == "--frc-restarts") {
       if (!c.frc) throw std::invalid_argument("--frc-restarts must follow --frc");
-      c.frc->restarts = std::stoi(need(i));
-      if (c.frc->restarts < 0) throw std::invalid_argument("--frc-restarts must be >= 0");
+      c.frc->restarts = integer(0);
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;
@@ -227,7 +230,7 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--optimise-preload") {
       c.optimal = blade::parse_optimal_range(need(i));
     } else if (a == "--threads") {
-      c.threads = std::stoi(need(i));
+      c.threads = integer(0, 1024, "0: all cores");
     } else if (a == "--out") {
       c.out = need(i);
     } else {

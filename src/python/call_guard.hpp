@@ -1,7 +1,8 @@
 #pragma once
 // The Python module's guards of long calls (docs/python.md, "Threads and interrupts"):
 //
-// - PySystem, the Python FrictionDampedSystem: the C++ system and a lock. A system's evaluation
+// - PySystem and PyContactSystem, the Python FrictionDampedSystem and ContactSystem: the C++
+//   system and a lock. A system's evaluation
 //   workspace, factorisation, event and impact logs are mutable (docs/architecture.md, "Thread
 //   safety"), so two runs on one system at once would corrupt each other; every call that runs
 //   or evaluates a system holds its lock, and calls on one system from several Python threads
@@ -32,24 +33,31 @@ namespace stickslip_python {
 namespace py = pybind11;
 using System = stickslip::FrictionDampedSystem<double>;
 
-/// The Python FrictionDampedSystem: the C++ system and the lock of the calls that use it.
-class PySystem : public System {
+/// A Python system (FrictionDampedSystem, ContactSystem): the C++ system and the lock of the
+/// calls that use it.
+template <class Base>
+class Locked : public Base {
  public:
-  using System::System;
-  explicit PySystem(const System& s) : System(s) {}
+  using Base::Base;
+  explicit Locked(const Base& s) : Base(s) {}
   /// A copy has its own (free) lock.
-  PySystem(const PySystem& other) : System(other) {}
-  PySystem& operator=(const PySystem& other) {
-    System::operator=(other);
+  Locked(const Locked& other) : Base(other) {}
+  Locked& operator=(const Locked& other) {
+    Base::operator=(other);
     return *this;
   }
-  ~PySystem() = default;
+  ~Locked() = default;
   /// The lock of the calls that run or evaluate this system.
   std::recursive_timed_mutex& mutex() const { return mutex_; }
 
  private:
   mutable std::recursive_timed_mutex mutex_;
 };
+
+/// The Python FrictionDampedSystem.
+using PySystem = Locked<System>;
+/// The Python ContactSystem.
+using PyContactSystem = Locked<stickslip::ContactSystem<double>>;
 
 /// How often a call with the GIL released looks for signals (and how long a wait for a system's
 /// lock lasts between two looks): often enough for Ctrl-C to feel immediate, rarely enough that
@@ -95,7 +103,8 @@ class SignalCheck {
 /// gives up when a handler raised (then owns() is false and the caller rethrows).
 class SystemLock {
  public:
-  SystemLock(const PySystem& system, SignalCheck& signals) : mutex_(system.mutex()) {
+  template <class Base>
+  SystemLock(const Locked<Base>& system, SignalCheck& signals) : mutex_(system.mutex()) {
     while (!mutex_.try_lock_for(kSignalInterval))
       if (signals()) return;
     owns_ = true;
@@ -116,8 +125,8 @@ class SystemLock {
 /// it (f must not touch Python objects, nor return one; a long f asks `signals` between steps and
 /// stops when it answers true); then, with the GIL, KeyboardInterrupt when Ctrl-C came during the
 /// wait for the lock or the call.
-template <class F>
-auto with_system(const PySystem& system, F&& f) {
+template <class Base, class F>
+auto with_system(const Locked<Base>& system, F&& f) {
   using R = decltype(f(std::declval<SignalCheck&>()));
   SignalCheck signals;
   if constexpr (std::is_void_v<R>) {

@@ -23,6 +23,7 @@
 #include <string>
 #include <thread>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -50,10 +51,12 @@ namespace {
 using namespace stickslip;
 using Index = Eigen::Index;
 using System = FrictionDampedSystem<double>;
+using CSystem = ContactSystem<double>;
 using State = System::State;
 using Mode = System::Mode;
 using Law = FrictionLawVariant<double>;
 using stickslip_python::copy_of;
+using stickslip_python::PyContactSystem;
 using stickslip_python::PySystem;
 using stickslip_python::SignalCheck;
 using stickslip_python::with_system;
@@ -72,12 +75,36 @@ Mode to_mode(const std::vector<ContactState>& states) {
   return mode;
 }
 
-/// A Python CoulombLaw, StribeckLaw or RegularisedLaw as the damper's law variant.
-Law to_law(const py::handle& law) {
+/// A Python CoulombLaw, StribeckLaw or RegularisedLaw as the law variant (else ValueError naming
+/// `where` and law).
+Law to_law(const py::handle& law, const std::string& where = "PointDamper") {
   if (py::isinstance<CoulombLaw<double>>(law)) return law.cast<CoulombLaw<double>>();
   if (py::isinstance<StribeckLaw<double>>(law)) return law.cast<StribeckLaw<double>>();
   if (py::isinstance<RegularisedLaw<double>>(law)) return law.cast<RegularisedLaw<double>>();
-  throw std::invalid_argument("PointDamper: law must be a CoulombLaw, StribeckLaw or RegularisedLaw");
+  throw std::invalid_argument(where + ": law must be a CoulombLaw, StribeckLaw or RegularisedLaw");
+}
+
+template <class T>
+T cast_as(const py::handle& h, const std::string& what);
+
+/// A Python callable f(t) as a std::function (None: empty), for a load's F(t) or a contact's N(t);
+/// ValueError "<where>: time_function must be None or a callable ..." otherwise. Copies share one
+/// reference, released with the GIL held (copies may live on other threads); each call takes the
+/// GIL and casts the result (TypeError naming `where` unless a float).
+std::function<double(double)> python_time_function(const py::object& f, const std::string& where,
+                                                   const char* quantity) {
+  if (f.is_none()) return nullptr;
+  if (!PyCallable_Check(f.ptr()))
+    throw std::invalid_argument(where + ": time_function must be None or a callable " + quantity + "(t)");
+  std::shared_ptr<py::object> fn(new py::object(f), [](py::object* o) {
+    py::gil_scoped_acquire gil;
+    delete o;
+  });
+  const std::string what = where + ": time_function(t) must return a float";
+  return [fn, what](double t) {
+    py::gil_scoped_acquire gil;
+    return cast_as<double>((*fn)(t), what);
+  };
 }
 
 /// A Python argument or callable result as T, else TypeError "<what>, got <its type[ and shape]>"
@@ -96,7 +123,8 @@ T cast_as(const py::handle& h, const std::string& what) {
 
 /// Checks a run's start: x0 of state_size() entries (ValueError naming x0, with both sizes), then
 /// its mode (validate_state: num_dampers() states, ...).
-void check_start(const System& system, const Mode& mode, const State& x, const std::string& where) {
+template <class Sys>
+void check_start(const Sys& system, const Mode& mode, const State& x, const std::string& where) {
   if (x.size() != system.state_size())
     throw std::invalid_argument(where + ": x0 has size " + std::to_string(x.size()) +
                                 ", expected state_size() = " + std::to_string(system.state_size()));
@@ -126,13 +154,14 @@ struct Run {
   std::vector<ContactState> mode;
   StepperStats stats;
   double E0 = 0;
-  std::optional<System::EnergyBalance> energy;
+  std::optional<System::EnergyBalance> energy;          // a FrictionDampedSystem's audit
+  std::optional<CSystem::EnergyBalance> contact_energy;  // a ContactSystem's audit
   std::vector<double> sample_t;
   std::vector<State> samples;  // empty unless record_states
   std::vector<std::vector<ContactState>> sample_modes;
   std::vector<std::vector<double>> probe_values;  // per sample
   std::vector<double> force_t;                     // samples with t >= evaluate_from
-  std::vector<System::Vector> N, f, V, y, X;
+  std::vector<System::Vector> N, f, V, y, X;  // y and X: FrictionDampedSystem only
   std::vector<Transition> transitions;
   std::vector<DamperWindowStatistics<double>> statistics;
 };
@@ -148,10 +177,12 @@ py::array_t<T> stack(const Rows& rows, Index cols, Get get) {
 }
 
 /// simulate()'s observer: samples (t, x, mode, probes, forces after evaluate_from), transitions,
-/// and DamperStatistics when a window is given; stops the run when a signal handler raised.
+/// and DamperStatistics when a window is given (a FrictionDampedSystem's run: Sys is System or
+/// CSystem, the State and Mode types are the same); stops the run when a signal handler raised.
+template <class Sys>
 class Recorder {
  public:
-  Recorder(System& system, Run& run, std::vector<System::Vector> probe_shapes, bool record_states,
+  Recorder(Sys& system, Run& run, std::vector<System::Vector> probe_shapes, bool record_states,
            double evaluate_from, std::optional<DamperStatistics<System>>& statistics, SignalCheck& signals)
       : system_(system), run_(run), shapes_(std::move(probe_shapes)), record_states_(record_states),
         evaluate_from_(evaluate_from), statistics_(statistics), signals_(signals) {}
@@ -172,19 +203,23 @@ class Recorder {
     for (std::size_t k = 0; k < shapes_.size(); ++k) p[k] = shapes_[k].dot(x.head(system_.num_modes()));
     run_.probe_values.push_back(std::move(p));
     if (t >= evaluate_from_ - 1e-12) {  // the tolerance of examples/blade_damper's record window
-      const System::Evaluation& e = system_.evaluate(mode, t, x);
+      const auto& e = system_.evaluate(mode, t, x);
       run_.force_t.push_back(t);
       run_.N.push_back(e.N);
       run_.f.push_back(e.f);
-      run_.V.push_back(e.V);
-      run_.y.push_back(e.y);
-      run_.X.push_back(e.X);
+      if constexpr (std::is_same_v<Sys, System>) {
+        run_.V.push_back(e.V);
+        run_.y.push_back(e.y);
+        run_.X.push_back(e.X);
+      } else {
+        run_.V.push_back(e.v);
+      }
     }
     return !signals_();
   }
 
  private:
-  System& system_;
+  Sys& system_;
   Run& run_;
   std::vector<System::Vector> shapes_;
   bool record_states_;
@@ -193,21 +228,38 @@ class Recorder {
   SignalCheck& signals_;
 };
 
+/// The mechanical energy at the start of a run (both systems' signatures).
+double start_energy(System& system, const Mode& mode, double t, const State& x) {
+  return system.mechanical_energy(mode, t, x);
+}
+double start_energy(CSystem& system, const Mode&, double, const State& x) { return system.mechanical_energy(x); }
+
 /// simulate() from (mode, t0, x0) - by default the system's initial state made consistent - to
 /// t_end, recording as asked. The GIL is released and the system's lock held while the stepper
-/// runs; Ctrl-C stops it (KeyboardInterrupt).
-Run run_simulation(PySystem& py_system, double t_end, const RunOptions<double>& options, double t0,
+/// runs; Ctrl-C stops it (KeyboardInterrupt). Py: PySystem or PyContactSystem (no probes nor
+/// statistics: ValueError naming them).
+template <class Py>
+Run run_simulation(Py& py_system, double t_end, const RunOptions<double>& options, double t0,
                    std::optional<State> x0, std::optional<std::vector<ContactState>> mode0,
                    const std::vector<Probe>& probes, bool record_states, double evaluate_from,
                    std::optional<StatisticsWindow<double>> window, bool consistent) {
+  constexpr bool kContacts = std::is_same_v<Py, PyContactSystem>;
+  using Sys = std::conditional_t<kContacts, CSystem, System>;
+  if constexpr (kContacts) {
+    if (!probes.empty())
+      throw std::invalid_argument("simulate: probes must be empty for a ContactSystem (record_states gives q: "
+                                  "a point's displacement is its row . q, e.g. contact_row(i) . q)");
+    if (window) throw std::invalid_argument("simulate: statistics must be None for a ContactSystem");
+  }
   return with_system(py_system, [&](SignalCheck& signals) {
-    System& system = py_system;
+    Sys& system = py_system;
     Run run;
     State x = x0 ? *x0 : system.initial_state();
     Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
     check_start(system, mode, x, "simulate");
     std::vector<System::Vector> shapes;
-    for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
+    if constexpr (!kContacts)
+      for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
     if (consistent && !system.make_consistent(mode, t0, x)) {
       run.status = Status::StoppedBySystem;
       run.message = "inconsistent or lifted-off initial contact state at t0";
@@ -216,10 +268,11 @@ Run run_simulation(PySystem& py_system, double t_end, const RunOptions<double>& 
       run.mode = to_list(mode);
       return run;
     }
-    run.E0 = system.options().energy_audit ? system.mechanical_energy(mode, t0, x) : 0.0;
+    run.E0 = system.options().energy_audit ? start_energy(system, mode, t0, x) : 0.0;
     std::optional<DamperStatistics<System>> statistics;
-    if (window) statistics.emplace(system, mode, t0, x, *window);
-    Recorder recorder(system, run, std::move(shapes), record_states, evaluate_from, statistics, signals);
+    if constexpr (!kContacts)
+      if (window) statistics.emplace(system, mode, t0, x, *window);
+    Recorder<Sys> recorder(system, run, std::move(shapes), record_states, evaluate_from, statistics, signals);
     auto result = simulate(system, mode, t0, x, t_end, options, recorder);
     run.status = result.status;
     run.message = result.message;
@@ -227,7 +280,10 @@ Run run_simulation(PySystem& py_system, double t_end, const RunOptions<double>& 
     run.x = result.x;
     run.mode = to_list(result.mode);
     run.stats = result.stats;
-    if (system.options().energy_audit) run.energy = system.energy_balance(result.mode, result.t, result.x, run.E0);
+    if (system.options().energy_audit) {
+      if constexpr (kContacts) run.contact_energy = system.energy_balance(result.x, run.E0);
+      else run.energy = system.energy_balance(result.mode, result.t, result.x, run.E0);
+    }
     if (statistics)
       for (Index i = 0; i < statistics->num_dampers(); ++i) run.statistics.push_back(statistics->statistics(i));
     return run;
@@ -410,21 +466,7 @@ void bind_dampers(py::module_& m) {
                   py::arg("amplitude"), py::arg("omega"), py::arg("phase") = 0.0)
       .def_property(
           "time_function", [](const Load& l) { return l.time_function; },
-          [](Load& l, const py::object& f) {
-            l.time_function = nullptr;
-            if (f.is_none()) return;
-            if (!PyCallable_Check(f.ptr()))
-              throw std::invalid_argument("PointLoad: time_function must be None or a callable F(t)");
-            // Copies share one reference, released with the GIL held (copies may live on other threads).
-            std::shared_ptr<py::object> fn(new py::object(f), [](py::object* o) {
-              py::gil_scoped_acquire gil;
-              delete o;
-            });
-            l.time_function = [fn](double t) {
-              py::gil_scoped_acquire gil;
-              return cast_as<double>((*fn)(t), "PointLoad: time_function(t) must return a float");
-            };
-          },
+          [](Load& l, const py::object& f) { l.time_function = python_time_function(f, "PointLoad", "F"); },
           "optional F(t) (a Python callable; slower)")
       .def("value", &Load::value, py::arg("t"));
   using Options = ModelOptions<double>;
@@ -544,6 +586,208 @@ void bind_system(py::module_& m) {
           py::arg("mode"), py::arg("t"), py::arg("x"), py::arg("E0"));
 }
 
+/// Evaluation of a ContactSystem as a dict of arrays.
+py::dict to_dict(const CSystem::Evaluation& e) {
+  py::dict d;
+  d["qdd"] = e.qdd, d["f"] = e.f, d["v"] = e.v, d["N"] = e.N, d["finite"] = e.finite;
+  return d;
+}
+
+void bind_contacts(py::module_& m) {
+  using Point = StructurePoint<double>;
+  using Direction = PlaneDirection<double>;
+  using Normal = HeldNormal<double>;
+  using Contact = PointContact<double>;
+  using COptions = ContactSystemOptions<double>;
+  py::class_<Point>(m, "StructurePoint",
+                    "A material point of the structure: `coordinate` [m] along member `member` (0 at the member's "
+                    "first node), in [0, length] (docs/contacts.md).")
+      .def(py::init([](MemberId member, double coordinate) { return Point{member, coordinate}; }), py::arg("member"),
+           py::arg("coordinate"))
+      .def_readwrite("member", &Point::member, "member the point lies on")
+      .def_readwrite("coordinate", &Point::coordinate, "position along the member [m]")
+      .def("__repr__", [](const Point& p) {
+        return "StructurePoint(member=" + std::to_string(p.member.value) + ", coordinate=" +
+               std::string(py::str(py::float_(p.coordinate))) + ")";
+      });
+  py::class_<Direction>(m, "PlaneDirection",
+                        "An in-plane direction (x, y) in global components; a contact needs a unit vector (|d| = 1 "
+                        "to 1e-9, checked by ContactSystem: ValueError naming direction).")
+      .def(py::init([](double x, double y) { return Direction{x, y}; }), py::arg("x") = 1.0, py::arg("y") = 0.0)
+      .def_readwrite("x", &Direction::x, "global X component")
+      .def_readwrite("y", &Direction::y, "global Y component")
+      .def_static("at_angle", &Direction::at_angle, py::arg("angle"),
+                  "The unit direction (cos a, sin a) at angle `angle` [rad] from global X, counter-clockwise.")
+      .def_static("global_x", &Direction::global_x, "Global X, (1, 0).")
+      .def_static("global_y", &Direction::global_y, "Global Y, (0, 1).");
+  py::class_<Normal>(m, "HeldNormal",
+                     "A held normal force N(t) [N]: `value`, or time_function(t) when set; > 0 at every t.")
+      .def(py::init([](double value, const py::object& time_function) {
+             Normal n;
+             n.value = value;
+             n.time_function = python_time_function(time_function, "HeldNormal", "N");
+             return n;
+           }),
+           py::arg("value") = 1.0, py::arg("time_function") = py::none())
+      .def_readwrite("value", &Normal::value, "constant normal force [N] (default 1)")
+      .def_property(
+          "time_function", [](const Normal& n) { return n.time_function; },
+          [](Normal& n, const py::object& f) { n.time_function = python_time_function(f, "HeldNormal", "N"); },
+          "optional N(t) [N] (a Python callable, called with the GIL: slower); None: the constant value")
+      .def("__call__", &Normal::operator(), py::arg("t"), "N(t) [N].");
+  py::class_<Contact>(m, "PointContact",
+                      "A friction contact at a structure point under a held normal force: side a rubs on ground "
+                      "(grounded) or on side b (joint) along `direction`; s = (u_a - u_b) . d (docs/contacts.md).")
+      .def_static(
+          "grounded",
+          [](const Point& point, const Direction& direction, const py::object& law, double N) {
+            detail::require_positive("PointContact.grounded", "N", N);
+            return Contact::grounded(point, direction, to_law(law, "PointContact.grounded"), N);
+          },
+          py::arg("point"), py::arg("direction"), py::arg("law"), py::arg("N"),
+          "A grounded slider: `point` rubs on ground along the unit `direction` with `law` (CoulombLaw, StribeckLaw "
+          "or RegularisedLaw) under the normal force N [N] > 0 (ValueError naming N otherwise).")
+      .def_static(
+          "joint",
+          [](const Point& point_a, const Point& point_b, const Direction& direction, const py::object& law, double N) {
+            detail::require_positive("PointContact.joint", "N", N);
+            return Contact::joint(point_a, point_b, direction, to_law(law, "PointContact.joint"), N);
+          },
+          py::arg("point_a"), py::arg("point_b"), py::arg("direction"), py::arg("law"), py::arg("N"),
+          "A friction joint: `point_a` rubs on `point_b` (another point, e.g. of another member) along the unit "
+          "`direction` with `law` under the normal force N [N] > 0.")
+      .def_readwrite("a", &Contact::a, "the sliding side (a StructurePoint)")
+      .def_readwrite("b", &Contact::b, "the other side: a StructurePoint, or None for ground")
+      .def_readwrite("direction", &Contact::direction, "tangential unit direction d (global)")
+      .def_property(
+          "friction", [](const Contact& c) { return c.friction; },
+          [](Contact& c, const py::object& law) { c.friction = to_law(law, "PointContact"); },
+          "the friction law (CoulombLaw, StribeckLaw or RegularisedLaw)")
+      .def_readwrite("normal", &Contact::normal, "the held normal force (HeldNormal) [N]")
+      .def_readwrite("initial_state", &Contact::initial_state,
+                     "contact state at the start of a run: Stick (default), SlipPositive or SlipNegative")
+      .def("law", [](const Contact& c) { return c.law(); }, "The friction law.")
+      .def("normal_force", &Contact::normal_force, py::arg("t"), "N(t) [N].")
+      .def("start_state", &Contact::start_state, "The contact state at the start of a run.");
+  py::class_<COptions>(m, "ContactSystemOptions", "Options of a ContactSystem.")
+      .def(py::init<>())
+      .def_readwrite("energy_audit", &COptions::energy_audit,
+                     "carry the audit integrals W_ext, D_visc, D_fric as three extra states (default True)")
+      .def_readwrite("velocity_tolerance", &COptions::velocity_tolerance,
+                     "|v| [m/s] at or below which v counts as 0 where a contact's state is decided");
+
+  py::class_<PyContactSystem> cls(
+      m, "ContactSystem",
+      "A frame's retained modes + friction contacts at structure points (PointContact) + point loads: q'' = r + "
+      "sum_i w_i f_i with contact rows w_i (s_i = w_i . q) (docs/contacts.md). State [q, q', W_ext, D_visc, "
+      "D_fric] (the last three with the energy audit). Calls that run or evaluate one system from several threads "
+      "run one after the other (docs/python.md).");
+  py::class_<CSystem::ContactEvent>(cls, "ContactEvent", "One contact's switch.")
+      .def_readonly("t", &CSystem::ContactEvent::t, "time of the switch [s]")
+      .def_readonly("contact", &CSystem::ContactEvent::contact, "which contact switched")
+      .def_readonly("from_state", &CSystem::ContactEvent::from, "its state before")
+      .def_readonly("to_state", &CSystem::ContactEvent::to, "its state after");
+  using Balance = CSystem::EnergyBalance;
+  py::class_<Balance>(cls, "EnergyBalance", "The energy audit: (E - E0) - (W_ext - D_visc - D_fric) = residual [J].")
+      .def_readonly("mechanical", &Balance::mechanical, "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J]")
+      .def_readonly("external_work", &Balance::external_work, "W_ext [J]")
+      .def_readonly("viscous_dissipation", &Balance::viscous_dissipation, "D_visc [J]")
+      .def_readonly("friction_dissipation", &Balance::friction_dissipation, "D_fric [J]")
+      .def_readonly("residual", &Balance::residual, "(E - E0) - (W_ext - D_visc - D_fric) [J]")
+      .def_readonly("scale", &Balance::scale, "largest magnitude of the terms [J]")
+      .def("relative_residual", &Balance::relative_residual, "|residual| / scale (0 when every term is 0).");
+  cls.def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<Contact>,
+                   std::vector<PointLoad<double>>, COptions>(),
+          py::arg("frame"), py::arg("basis"), py::arg("contacts"), py::arg("loads") = std::vector<PointLoad<double>>{},
+          py::arg("options") = COptions{},
+          "Assembles each contact's row from `frame` and `basis` (a basis of that frame). ValueError naming the "
+          "contact and the parameter: a side off its member (coordinate), a non-unit direction, a non-positive "
+          "normal.value, a contact that cannot slip (zero row), ...")
+      .def_property_readonly("num_modes", [](const PyContactSystem& s) { return s.num_modes(); }, "n, retained modes")
+      .def_property_readonly("num_contacts", [](const PyContactSystem& s) { return s.num_contacts(); }, "D, contacts")
+      .def_property_readonly("state_size", [](const PyContactSystem& s) { return s.state_size(); },
+                             "2n (+ 3 with the energy audit)")
+      .def_property_readonly("audit_offset", [](const PyContactSystem& s) { return s.audit_offset(); },
+                             "index of the first audit integral (W_ext, D_visc, D_fric)")
+      .def_property_readonly("contacts", [](const PyContactSystem& s) { return s.contacts(); },
+                             "the contacts (copies of the PointContacts)")
+      .def_property_readonly("loads", [](const PyContactSystem& s) { return s.loads(); }, "the point loads (copies)")
+      .def_property_readonly("options", [](const PyContactSystem& s) { return s.options(); },
+                             "the ContactSystemOptions (a copy)")
+      .def(
+          "contact_row",
+          [](const PyContactSystem& s, Index i) {
+            if (i < 0 || i >= s.num_contacts())
+              detail::throw_invalid("ContactSystem.contact_row",
+                                    "i must be in [0, num_contacts() = " + std::to_string(s.num_contacts()) + ")", i);
+            return Eigen::VectorXd(s.contact_row(i));
+          },
+          py::arg("i"), "Row w_i of contact i: its slip s_i = w_i . q [m], v_i = w_i . q' [m/s].")
+      .def("initial_state", &PyContactSystem::initial_state, "Rest: q = q' = 0, audit integrals 0.")
+      .def("requested_mode", [](const PyContactSystem& s) { return to_list(s.requested_mode()); },
+           "Each contact's initial_state.")
+      .def(
+          "make_consistent",
+          [](PyContactSystem& s, std::vector<ContactState> mode, double t, State x) {
+            Mode md = to_mode(mode);
+            const bool ok = with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, "ContactSystem.make_consistent");
+              return s.make_consistent(md, t, x);
+            });
+            return py::make_tuple(ok, to_list(md), x);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "(ok, mode, x) made consistent at t [s]: a contact with |v| above the velocity tolerance slides in sgn(v), "
+          "one at rest sticks unless its force exceeds mu_s N; stuck velocities are projected to 0.")
+      .def(
+          "evaluate",
+          [](PyContactSystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
+            const Mode md = to_mode(mode);
+            const CSystem::Evaluation e = with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, "ContactSystem.evaluate");
+              return s.evaluate(md, t, x);  // a copy, made under the lock
+            });
+            return to_dict(e);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "Forces and kinematics at (mode, t, x): dict of qdd, f (friction force on side a along d [N]), v (sliding "
+          "velocity [m/s]), N (normal force [N]) and finite.")
+      .def(
+          "events", [](const PyContactSystem& s) { return with_system(s, [&](SignalCheck&) { return s.events(); }); },
+          "The contact switches (ContactSystem.ContactEvent) logged since construction or clear_events().")
+      .def("clear_events", [](PyContactSystem& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); },
+           "Forgets the logged switches.")
+      .def(
+          "mechanical_energy",
+          [](const PyContactSystem& s, const State& x) {
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(s.requested_mode(), x, "ContactSystem.mechanical_energy");
+              return s.mechanical_energy(x);
+            });
+          },
+          py::arg("x"), "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J].")
+      .def(
+          "energy_balance",
+          [](const PyContactSystem& s, const State& x, double E0) {
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(s.requested_mode(), x, "ContactSystem.energy_balance");
+              return s.energy_balance(x, E0);
+            });
+          },
+          py::arg("x"), py::arg("E0"),
+          "The energy audit at x from the start's energy E0 [J] (ValueError when options.energy_audit is off).");
+}
+
+/// simulate() for one system type (Py: PySystem or PyContactSystem).
+template <class Py>
+void def_simulate(py::module_& m, const char* doc) {
+  m.def("simulate", &run_simulation<Py>, py::arg("system"), py::arg("t_end"), py::arg("options") = RunOptions<double>{},
+        py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+        py::arg("probes") = std::vector<Probe>{}, py::arg("record_states") = true,
+        py::arg("evaluate_from") = std::numeric_limits<double>::infinity(), py::arg("statistics") = py::none(),
+        py::arg("consistent") = true, doc);
+}
+
 void bind_simulate(py::module_& m) {
   py::enum_<Integrator>(m, "Integrator")
       .value("RungeKutta4", Integrator::RungeKutta4)
@@ -641,7 +885,15 @@ void bind_simulate(py::module_& m) {
       .def_readonly("mode", &Run::mode, "contact states at t")
       .def_readonly("stats", &Run::stats)
       .def_readonly("E0", &Run::E0, "mechanical energy at the (consistent) start")
-      .def_readonly("energy", &Run::energy, "EnergyBalance at t (None without the energy audit)")
+      .def_property_readonly(
+          "energy",
+          [](const Run& r) -> py::object {
+            if (r.energy) return py::cast(*r.energy);
+            if (r.contact_energy) return py::cast(*r.contact_energy);
+            return py::none();
+          },
+          "the energy audit at t: an EnergyBalance (a ContactSystem's: ContactSystem.EnergyBalance), None without "
+          "the audit")
       .def_readonly("transitions", &Run::transitions)
       .def_readonly("damper_statistics", &Run::statistics)
       .def_property_readonly("sample_t", [](const Run& r) { return py::array_t<double>(py::cast(r.sample_t)); })
@@ -670,18 +922,24 @@ void bind_simulate(py::module_& m) {
         const Index D = static_cast<Index>(r.mode.size());
         const auto get = [](const System::Vector& v, Index c) { return v[c]; };
         d["N"] = stack<double>(r.N, D, get), d["f"] = stack<double>(r.f, D, get), d["V"] = stack<double>(r.V, D, get);
-        d["y"] = stack<double>(r.y, D, get), d["X"] = stack<double>(r.X, D, get);
+        if (r.y.size() == r.N.size()) {  // a FrictionDampedSystem's run
+          d["y"] = stack<double>(r.y, D, get), d["X"] = stack<double>(r.X, D, get);
+        }
         return d;
-      });
+      }, "per sample from evaluate_from on, one column per damper or contact: N, f, V (a ContactSystem's sliding "
+         "velocity v) and, for a FrictionDampedSystem, y and X");
 
-  m.def("simulate", &run_simulation, py::arg("system"), py::arg("t_end"), py::arg("options") = RunOptions<double>{},
-        py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
-        py::arg("probes") = std::vector<Probe>{}, py::arg("record_states") = true,
-        py::arg("evaluate_from") = std::numeric_limits<double>::infinity(), py::arg("statistics") = py::none(),
-        py::arg("consistent") = true,
-        "Runs the system from (mode, t0, x0) (default: its initial state) to t_end; samples every "
-        "options.output_interval (states, modes, probes; forces N, f, V, y, X from evaluate_from on). The GIL is "
-        "released and calls on one system run one after the other; Ctrl-C stops the call (KeyboardInterrupt).");
+  def_simulate<PySystem>(
+      m,
+      "Runs the system from (mode, t0, x0) (default: its initial state) to t_end; samples every "
+      "options.output_interval (states, modes, probes; forces N, f, V, y, X from evaluate_from on). The GIL is "
+      "released and calls on one system run one after the other; Ctrl-C stops the call (KeyboardInterrupt).");
+  def_simulate<PyContactSystem>(
+      m,
+      "A ContactSystem's run, as above: from (mode, t0, x0) (default: rest, each contact's initial_state) to "
+      "t_end [s]; states [q, q', audit integrals], modes, forces N, f, v (as V) of the contacts from "
+      "evaluate_from on; energy: a ContactSystem.EnergyBalance. probes and statistics are not available "
+      "(ValueError): a point's displacement is its modal row . q.");
 }
 
 void bind_trade_study(py::module_& m) {
@@ -781,7 +1039,8 @@ struct PyOrbit {
 };
 
 /// The C++ orbit as PyOrbit (no Python objects: callable with the GIL released).
-PyOrbit to_py(const PeriodicOrbit<System>& orbit) {
+template <class Sys>
+PyOrbit to_py(const PeriodicOrbit<Sys>& orbit) {
   PyOrbit out;
   out.status = orbit.status;
   out.message = orbit.message;
@@ -837,9 +1096,15 @@ long checked_max_steps(long max_steps, const std::string& where) {
 /// when empty - C++'s "all", here the audit integrals too - or out of range) or by default q,
 /// q', x_d, x_d' (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor
 /// the audit integrals.
-std::vector<Index> periodic_set(const System& system, const std::optional<std::vector<Index>>& periodic,
+/// The default periodic components: q, q', x_d, x_d' of a FrictionDampedSystem (2n + 2D), q, q' of
+/// a ContactSystem (2n).
+Index default_periodic_size(const System& system) { return 2 * system.num_modes() + 2 * system.num_dampers(); }
+Index default_periodic_size(const CSystem& system) { return 2 * system.num_modes(); }
+
+template <class Sys>
+std::vector<Index> periodic_set(const Sys& system, const std::optional<std::vector<Index>>& periodic,
                                 const std::string& where) {
-  if (!periodic) return ShootingOptions<double>::first(2 * system.num_modes() + 2 * system.num_dampers());
+  if (!periodic) return ShootingOptions<double>::first(default_periodic_size(system));
   if (periodic->empty())
     throw std::invalid_argument(where + ": periodic must not be empty (None: the default q, q', x_d, x_d')");
   detail::require_indices(where, "periodic", *periodic, system.state_size());
@@ -849,7 +1114,8 @@ std::vector<Index> periodic_set(const System& system, const std::optional<std::v
 /// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
 /// x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a neutral direction) nor the energy
 /// quadratures (docs/steady_state.md).
-ShootingOptions<double> shooting_options(const System& system, const std::optional<std::vector<Index>>& periodic,
+template <class Sys>
+ShootingOptions<double> shooting_options(const Sys& system, const std::optional<std::vector<Index>>& periodic,
                                          const std::string& monodromy, double tolerance, int max_iterations,
                                          double rtol, double atol, long max_steps, const std::string& where) {
   ShootingOptions<double> opt;
@@ -979,6 +1245,32 @@ struct ContinuationCallbacks {
   }
 };
 
+/// find_periodic_orbit for one system type (Py: PySystem or PyContactSystem).
+template <class Py>
+void def_find_periodic_orbit(py::module_& m, const char* doc) {
+  using Sys = std::conditional_t<std::is_same_v<Py, PyContactSystem>, CSystem, System>;
+  m.def(
+      "find_periodic_orbit",
+      [](Py& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
+         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
+         double rtol, double atol, long max_steps) {
+        return with_system(system, [&](SignalCheck& signals) {
+          ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
+                                                         atol, max_steps, "find_periodic_orbit");
+          opt.interrupt = [&signals] { return signals(); };
+          State x = x0 ? *x0 : system.initial_state();
+          Mode md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, "find_periodic_orbit");
+          Shooting<Sys> shooting(system, opt);
+          return to_py(shooting.forced(md, t0, x, period));
+        });
+      },
+      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+      py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
+      py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps, doc);
+}
+
 void bind_steady_state(py::module_& m) {
   py::enum_<ShootingStatus>(m, "ShootingStatus")
       .value("Converged", ShootingStatus::Converged)
@@ -1010,31 +1302,17 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("events", &PyOrbit::events, "the contact switches of one period")
       .def_readonly("stick_fractions", &PyOrbit::stick_fractions, "per damper: time stuck / T")
       .def_readonly("switches", &PyOrbit::switches, "per damper: its contact-state changes in one period");
-  m.def(
-      "find_periodic_orbit",
-      [](PySystem& system, double period, double t0, std::optional<State> x0,
-         std::optional<std::vector<ContactState>> mode, std::optional<std::vector<Index>> periodic,
-         const std::string& monodromy, double tolerance, int max_iterations, double rtol, double atol, long max_steps) {
-        return with_system(system, [&](SignalCheck& signals) {
-          ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
-                                                         atol, max_steps, "find_periodic_orbit");
-          opt.interrupt = [&signals] { return signals(); };
-          State x = x0 ? *x0 : system.initial_state();
-          Mode md = mode ? to_mode(*mode) : system.requested_mode();
-          check_start(system, md, x, "find_periodic_orbit");
-          Shooting<System> shooting(system, opt);
-          return to_py(shooting.forced(md, t0, x, period));
-        });
-      },
-      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
-      py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
-      py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
-      py::arg("max_steps") = StepperOptions<double>{}.max_steps,
+  def_find_periodic_orbit<PySystem>(
+      m,
       "Forced periodic orbit of the given period by shooting from (mode, t0, x0) (default: the system's initial "
       "state), with its monodromy and Floquet multipliers (Shooting::forced, docs/steady_state.md). periodic: the "
       "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D); max_steps: step attempts "
       "allowed per orbit run (a run beyond it fails: IntegrationFailed). The GIL is released; Ctrl-C stops the "
       "call (KeyboardInterrupt).");
+  def_find_periodic_orbit<PyContactSystem>(
+      m,
+      "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
+      "2n), not the audit integrals. stick_fractions and switches are per contact.");
 
   py::enum_<ContinuationStatus>(m, "ContinuationStatus")
       .value("Completed", ContinuationStatus::Completed)
@@ -1284,6 +1562,7 @@ PYBIND11_MODULE(stickslip, m) {
   bind_frame(m);
   bind_dampers(m);
   bind_system(m);
+  bind_contacts(m);
   bind_simulate(m);
   bind_trade_study(m);
   bind_steady_state(m);

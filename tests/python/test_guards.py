@@ -15,12 +15,18 @@ import blade_scene as blade
 import stickslip as ss
 
 
-def cantilever_system(load):
+def cantilever_system(load, kind="damped"):
+    """A cantilever with load(member): a FrictionDampedSystem without dampers, or (kind
+    "contacts") a ContactSystem with a grounded slider at mid-span."""
     f = ss.FrameModel()
     root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
     m = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 10)
     f.clamp(root)
     basis = ss.compute_modes(f, num_modes=3)
+    if kind == "contacts":
+        slider = ss.PointContact.grounded(ss.StructurePoint(m, 0.1), ss.PlaneDirection.global_x(),
+                                          ss.CoulombLaw(0.35, 0.3), 1.0)
+        return ss.ContactSystem(f, basis, [slider], [load(m)]), m
     return ss.FrictionDampedSystem(f, basis, [], [load(m)]), m
 
 
@@ -43,9 +49,13 @@ def test_threads_on_one_system_give_the_serial_result_one_call_at_a_time():
         runs = list(pool.map(lambda _: run_signature(ss.simulate(system, 0.06, opts)), range(8)))
     assert all(r == reference for r in runs)
 
-    # Calls on one system do not overlap: a Python load (called inside each run with the GIL
-    # re-acquired, and every 50th call sleeping 0.1 ms with it released, so that a run going on
-    # at the same time would get in) sees each run's calls as one unbroken block.
+
+@pytest.mark.parametrize("kind", ["damped", "contacts"])
+def test_calls_on_one_system_do_not_overlap(kind):
+    # Calls on one system (a FrictionDampedSystem or a ContactSystem) do not overlap: a Python
+    # load (called inside each run with the GIL re-acquired, and every 50th call sleeping 0.1 ms
+    # with it released, so that a run going on at the same time would get in) sees each run's
+    # calls as one unbroken block.
     calls, local, start = [], threading.local(), threading.Barrier(3)
 
     def load(m):
@@ -63,7 +73,7 @@ def test_threads_on_one_system_give_the_serial_result_one_call_at_a_time():
         start.wait()
         return ss.simulate(shared, 0.03, ss.RunOptions(output_interval=1e-3))
 
-    shared, _ = cantilever_system(load)
+    shared, _ = cantilever_system(load, kind)
     with ThreadPoolExecutor(3) as pool:
         assert all(r.ok for r in pool.map(run, range(3)))
     blocks = [k for i, k in enumerate(calls) if i == 0 or calls[i - 1] != k]

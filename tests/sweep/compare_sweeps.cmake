@@ -49,18 +49,9 @@ if(RANKS STREQUAL "arguments")
       "--sweep 1:2:3x|--sweep expects lo:hi:count"
       "--sweep 1:inf:3|--sweep expects lo:hi:count"
       "--threads -1|--threads expects an integer in .0, 1024.")
-  foreach(case IN LISTS cases)
-    string(FIND "${case}" "|" bar)
-    string(SUBSTRING "${case}" 0 ${bar} arguments)
-    math(EXPR bar "${bar} + 1")
-    string(SUBSTRING "${case}" ${bar} -1 expected)
-    separate_arguments(arguments UNIX_COMMAND "${arguments}")
-    execute_process(COMMAND ${SWEEP_EXE} --backend serial ${arguments} --out ${out}/bad RESULT_VARIABLE rc
-                    OUTPUT_VARIABLE log ERROR_VARIABLE err)
-    if(rc EQUAL 0 OR NOT err MATCHES "${expected}" OR log MATCHES "preloads on")
-      message(FATAL_ERROR "${arguments}: expected a non-zero status before any run and '${expected}', got (${rc}):\n${log}\n${err}")
-    endif()
-  endforeach()
+  include(${CMAKE_CURRENT_LIST_DIR}/refused_arguments.cmake)
+  set(REFUSED_RUN_STARTED "preloads on")
+  expect_refused(${SWEEP_EXE} --backend serial --out ${out}/bad CASES ${cases})
   execute_process(COMMAND ${SWEEP_EXE} --backend serial --sweep-preloads -1,0 --duration ${duration} --out ${out}/none
                   RESULT_VARIABLE rc OUTPUT_VARIABLE log ERROR_VARIABLE err)
   file(READ ${out}/none/sweep.json json)
