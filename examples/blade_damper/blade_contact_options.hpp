@@ -1,12 +1,13 @@
 #pragma once
 /// \file blade_contact_options.hpp
-/// \brief The example's contact options of issue #22: --restitution e (the dampers leave the
+/// \brief The example's contact options: --restitution e (the dampers leave the
 /// platform at lift-off and land again, Separation::Separate with Newton's coefficient e) and
 /// --ends stop|extend|wall (what a contact point does at a platform end; a wall reflects it with
 /// --wall-restitution). docs/blade_damper.md.
 
 #include <stickslip/model.hpp>
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -56,8 +57,10 @@ bool parse_contact_option(const std::string& a, Next&& next, int& i, ContactOpti
   // A coefficient of restitution in [0, 1], read as the value of option `a`.
   auto restitution = [&] {
     const std::string v = next(i);
-    const double e = std::stod(v);
-    if (!(e >= 0.0 && e <= 1.0)) throw std::invalid_argument(a + " expects e in [0, 1], got " + v);
+    char* end = nullptr;
+    const double e = std::strtod(v.c_str(), &end);
+    if (v.empty() || end != v.c_str() + v.size() || !(e >= 0.0 && e <= 1.0))
+      throw std::invalid_argument(a + " expects e in [0, 1], got '" + v + "'");
     return e;
   };
   if (a == "--restitution") {

@@ -78,6 +78,15 @@ struct Scene {
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
+/// All of `text` as a finite number; throws std::invalid_argument naming `option` otherwise.
+double number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+    throw std::invalid_argument(option + " expects a finite number, got '" + text + "'");
+  return v;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -92,13 +101,17 @@ int main(int argc, char** argv) try {
     };
     if (a == "--points-out") csv = next();
     else if (a == "--json") json = next();
-    else if (a == "--parts") parts = static_cast<unsigned>(std::stoul(next()));
+    else if (a == "--parts") {
+      const double p = number(next(), a);
+      if (!(p >= 1 && p <= 64 && p == std::floor(p))) throw std::invalid_argument("--parts expects an integer in [1, 64]");
+      parts = static_cast<unsigned>(p);
+    }
     else if (a == "--range") {
       const std::string r = next();
       const auto colon = r.find(':');
       if (colon == std::string::npos) throw std::invalid_argument("--range expects lo:hi, got " + r);
-      lo = std::stod(r.substr(0, colon));
-      hi = std::stod(r.substr(colon + 1));
+      lo = number(r.substr(0, colon), a);
+      hi = number(r.substr(colon + 1), a);
       if (!(lo > 0 && hi > lo)) throw std::invalid_argument("--range expects 0 < lo < hi, got " + r);
     } else if (a == "--help") {
       std::printf("grounded_slider [--points-out FILE.csv] [--json FILE.json] [--parts n] [--range lo:hi]\n");
@@ -107,7 +120,6 @@ int main(int argc, char** argv) try {
       throw std::invalid_argument("unknown option " + a);
     }
   }
-  if (parts < 1) throw std::invalid_argument("--parts must be >= 1");
   const Scene scene;
   const double w1 = scene.basis.omega()(0);  // parameter p = w / w1 (order one, as the states' scale)
   std::vector<System> systems;
