@@ -75,7 +75,7 @@ TEST(CheckedBlockSolve, SingularLeadingBlockFallsBackToPivotedLu) {
   const Vec<6> z = solver.solve(r);
   EXPECT_TRUE(solver.pivoting());
   EXPECT_LT(relative_error(M, r, z), 1e-15);  // exact in binary: only additions of r's entries
-  // The next solves with the same M go straight to the LU.
+  // The next solves with the same M fail the check again and use the LU kept for M.
   const Vec<6> minus_r = -r;
   EXPECT_LT(relative_error(M, minus_r, solver.solve(minus_r)), 1e-15);
 }
@@ -110,6 +110,41 @@ TEST(CheckedBlockSolve, NearlySingularLeadingBlockFallsBackToPivotedLu) {
   solver.compute(solve_like_matrix<8>(3));
   solver.solve(r);
   EXPECT_FALSE(solver.pivoting());
+}
+
+// z is a function of (M, r) alone: a solve whose right side fails the check (and goes to the
+// LU) must not change the answer to a later right side that passes it. The model relies on this
+// for an observer that evaluates the forces at its samples to leave the run bitwise unchanged.
+// M as above (leading block 1e-13 I): a right side with r1 = 0 never meets the cancellation and
+// passes the check; one with r1 != 0 fails it. The passing right side is chosen so that its
+// block and LU answers differ in the last bits (else the comparison could not fail).
+TEST(CheckedBlockSolve, AnswerDoesNotDependOnEarlierRightSides) {
+  Mat<8> M = Mat<8>::Zero();
+  M.topLeftCorner<4, 4>() = 1e-13 * Mat<4>::Identity();
+  M.topRightCorner<4, 4>().setIdentity();
+  M.bottomLeftCorner<4, 4>().setIdentity();
+  M.bottomRightCorner<4, 4>() = 2.0 * Mat<4>::Identity();
+  const Eigen::PartialPivLU<Mat<8>> lu(M);
+  std::srand(11);
+  const Vec<8> r_fail = Vec<8>::Random();
+  Vec<8> r_pass = Vec<8>::Zero(), block = Vec<8>::Zero();
+  bool found = false;
+  for (int k = 0; k < 64 && !found; ++k) {
+    r_pass.tail<4>() = Vec<4>::Random();
+    stickslip::detail::CheckedBlockSolve<double, 8> fresh;
+    fresh.compute(M);
+    block = fresh.solve(r_pass);
+    found = !fresh.pivoting() && block != lu.solve(r_pass);
+  }
+  ASSERT_TRUE(found) << "no right side whose block answer differs from the LU's";
+  stickslip::detail::CheckedBlockSolve<double, 8> solver;
+  solver.compute(M);
+  solver.solve(r_fail);
+  ASSERT_TRUE(solver.pivoting());
+  const Vec<8> again = solver.solve(r_pass);
+  EXPECT_FALSE(solver.pivoting());
+  EXPECT_TRUE(again == block) << "after a right side that needed the LU: " << again.transpose() << " vs "
+                              << block.transpose();
 }
 
 // An exactly singular M (a zero row) gives non-finite values, as an LU alone does, never a finite

@@ -4,6 +4,7 @@
 
 #include "stickslip/contact.hpp"
 #include "stickslip/detail/validate.hpp"
+#include "stickslip/model/detail/enum_checks.hpp"
 
 #include <Eigen/Core>
 
@@ -35,6 +36,7 @@ class DamperStates {
   explicit DamperStates(Eigen::Index count, ContactState state = ContactState::Stick) {
     if (count < 0 || count > max_dampers)
       detail::throw_invalid("DamperStates", "count must be in [0, 64]", count);
+    detail::require_enumerator("DamperStates", "state", "ContactState", state, ContactState::Separated);
     size_ = static_cast<std::uint8_t>(count);
     states_.fill(state);
   }
@@ -61,9 +63,11 @@ class DamperStates {
     return (start_ & bit) ? WallRest::Start : ((finish_ & bit) ? WallRest::Finish : WallRest::None);
   }
   /// Marks damper `i` as resting against wall `w` (None: not resting). The mark counts while the
-  /// damper's state is Stick or Separated (see wall()); asserts 0 <= i < size().
+  /// damper's state is Stick or Separated (see wall()); asserts 0 <= i < size(). Throws
+  /// std::invalid_argument when w is not a WallRest enumerator.
   void set_wall(Eigen::Index i, WallRest w) {
     STICKSLIP_ASSERT(i >= 0 && i < size_);
+    detail::require_enumerator("DamperStates::set_wall", "w", "WallRest", w, WallRest::Finish);
     const std::uint64_t bit = std::uint64_t(1) << i;
     start_ = w == WallRest::Start ? (start_ | bit) : (start_ & ~bit);
     finish_ = w == WallRest::Finish ? (finish_ | bit) : (finish_ & ~bit);

@@ -9,6 +9,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/modal.hpp"
 #include "stickslip/model/damper_states.hpp"
+#include "stickslip/model/detail/enum_checks.hpp"
 #include "stickslip/model/detail/law_visit.hpp"
 #include "stickslip/model/detail/small_solve.hpp"
 #include "stickslip/model/model_options.hpp"
@@ -154,7 +155,17 @@ class FrictionDampedSystem {
   };
 
   /// Why the system stopped a run (kept with the damper and the time).
-  enum class StopReason { None, LiftOff, LeftMember, NoConsistentState };
+  /// NonFiniteLoad: a point load's value was not finite at the start (make_consistent).
+  enum class StopReason { None, LiftOff, LeftMember, NoConsistentState, NonFiniteLoad };
+
+  /// The most recent evaluation in which a point load's value F_l(t) was not finite (a
+  /// time_function returning NaN or an infinity): load_fault().
+  struct LoadFault {
+    Index load = -1;  ///< index of the load (-1: none since construction)
+    Scalar t = std::numeric_limits<Scalar>::quiet_NaN();      ///< the time of that evaluation
+    Scalar value = std::numeric_limits<Scalar>::quiet_NaN();  ///< the value F_l(t)
+    long count = 0;   ///< evaluations with a non-finite load value since construction
+  };
 
   /// Forces and kinematics of the dampers at one (mode, t, x), from the coupled solve.
   struct Evaluation {
@@ -331,8 +342,9 @@ class FrictionDampedSystem {
     return m;
   }
 
-  /// Checks that x has state_size() entries, mode has num_dampers() states and that only dampers
-  /// that may separate (flight_slot(i) >= 0) are ContactState::Separated (two comparisons and one per damper;
+  /// Checks that x has state_size() entries, mode has num_dampers() states, each a ContactState
+  /// enumerator other than LiftOff, and that only dampers
+  /// that may separate (flight_slot(i) >= 0) are ContactState::Separated (two comparisons and two per damper;
   /// done by evaluate() before every solve, so by rhs, guards, make_consistent and the outputs,
   /// and by simulate() before the first step).
   /// \throws std::invalid_argument naming `where`, the expected and the given sizes, or the
@@ -345,12 +357,20 @@ class FrictionDampedSystem {
       throw std::invalid_argument(std::string(where) + ": mode (DamperStates) has " +
                                   std::to_string(mode.size()) + " states, expected num_dampers() = " +
                                   std::to_string(D_));
-    for (Index i = 0; i < D_; ++i)  // only a damper with Separation::Separate has a flight state
+    for (Index i = 0; i < D_; ++i) {  // only a damper with Separation::Separate has a flight state
+      if (!detail::is_enumerator(mode[i], ContactState::Separated))
+        detail::require_enumerator(where, "mode[" + std::to_string(i) + "]", "ContactState", mode[i],
+                                   ContactState::Separated);
+      if (mode[i] == ContactState::LiftOff)  // the model stops there, or separates (Separated)
+        throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) +
+                                    "] is lift_off, which the model never runs in (a damper is in contact "
+                                    "- stick, slip - or Separated)");
       if (mode[i] == ContactState::Separated && flight_slot_[static_cast<std::size_t>(i)] < 0)
         throw std::invalid_argument(std::string(where) + ": mode[" + std::to_string(i) +
                                     "] is separated, but damper " + std::to_string(i) +
                                     " cannot separate (PointDamper::separation = Stop, or a "
                                     "constant normal load, or lift-off not watched)");
+    }
     if (has_walls_) validate_walls(mode, where);
   }
 
@@ -423,9 +443,10 @@ class FrictionDampedSystem {
   TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x);
 
   /// A consistent initial mode for state x at t, starting from the requested states; it also
-  /// reports lift-off at t0 (N <= 0) through `stop_reason()`. Returns false when none exists.
-  /// \throws std::invalid_argument when x or mode has the wrong size or a separated damper
-  ///         (see validate_state)
+  /// reports lift-off at t0 (N <= 0), or a load whose value at t is not finite
+  /// (NonFiniteLoad), through `stop_reason()`. Returns false when none exists.
+  /// \throws std::invalid_argument when t or an entry of x is not finite, or x or mode is not
+  ///         as validate_state() wants it (see validate_start)
   bool make_consistent(Mode& mode, Scalar t, State& x);
 
   // ---- outputs --------------------------------------------------------------------------------
@@ -459,8 +480,25 @@ class FrictionDampedSystem {
   /// transition() (LiftOff, LeftMember, NoConsistentState) and by make_consistent() (LiftOff at
   /// t0; a false return without lift-off leaves it as it was); never reset.
   StopReason stop_reason() const noexcept { return stop_reason_; }
-  /// The damper stop_reason() refers to (-1 while it is None).
+  /// The damper stop_reason() refers to (-1 while it is None; the load for NonFiniteLoad).
   Index stop_damper() const noexcept { return stop_damper_; }
+  /// The last evaluation whose load value was not finite (the evaluation is then not finite
+  /// either: rhs() returns NaN, and simulate() names the load in its NonFiniteState message).
+  const LoadFault& load_fault() const noexcept { return load_fault_; }
+
+  /// The checks of a run's start, before any evaluation (simulate(), make_consistent()): t0
+  /// finite, x0 and mode as validate_state() wants them, every entry of x0 finite, and no
+  /// damper in ContactState::LiftOff (validate_state). `t_name`, `x_name`: the parameters'
+  /// names in the messages. \throws std::invalid_argument naming `where` and the parameter
+  void validate_start(const Mode& mode, Scalar t0, const State& x0, const char* where,
+                      const char* t_name = "t0", const char* x_name = "x0") const {
+    detail::require_finite(where, t_name, t0);
+    validate_state(mode, x0, where);
+    using std::isfinite;
+    for (Index k = 0; k < x0.size(); ++k)
+      if (!isfinite(x0[k]))
+        detail::throw_invalid(where, std::string(x_name) + "[" + std::to_string(k) + "] must be finite", x0[k]);
+  }
 
   /// Mechanical energy: modal kinetic + strain energy, the dampers' kinetic energy along u
   /// (and along w with an inertial normal load), spring energy, and the preload's potential.
@@ -854,8 +892,12 @@ class FrictionDampedSystem {
   /// used with A = I (rows with |A_jj| >= 1/2 are divided by A_jj as they are assembled).
   void solve(const Mode& mode, Scalar t, const State& x) const {
     structural_r0(x);
-    for (Index l = 0; l < load_psi_.cols(); ++l)
-      r0_.noalias() += loads_[static_cast<std::size_t>(l)].value(t) * load_psi_.col(l);
+    using std::isfinite;
+    for (Index l = 0; l < load_psi_.cols(); ++l) {
+      const Scalar F = loads_[static_cast<std::size_t>(l)].value(t);
+      if (!isfinite(F)) load_fault_ = LoadFault{l, t, F, load_fault_.count + 1};
+      r0_.noalias() += F * load_psi_.col(l);
+    }
     solve_forces<false>(mode, x);
   }
 
@@ -1466,6 +1508,9 @@ class FrictionDampedSystem {
       }
       case StopReason::NoConsistentState:
         return TransitionAction::halt("no consistent stick/slip state found for " + who + at);
+      case StopReason::NonFiniteLoad:
+        return TransitionAction::halt("PointLoad[" + std::to_string(i) + "] is not finite" + at + " (F = " +
+                                      detail::format_value(load_fault_.value) + ")");
       case StopReason::None: break;
     }
     return TransitionAction::halt("stopped" + at);
@@ -1715,6 +1760,7 @@ class FrictionDampedSystem {
   mutable std::vector<char> flying_;
   Matrix response_, response_x_, impulse_dir_;
   StopReason stop_reason_ = StopReason::None;
+  mutable LoadFault load_fault_;
   Index stop_damper_ = -1;
 };
 
@@ -1738,6 +1784,11 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
                           n_);
   if (D_ > DamperStates::max_dampers)
     detail::throw_invalid("FrictionDampedSystem", "at most 64 dampers", D_);
+  detail::require_enumerator("FrictionDampedSystem", "options.normal_load", "NormalLoad", options_.normal_load,
+                             NormalLoad::Inertial);
+  detail::require_enumerator("FrictionDampedSystem", "options.end_policy", "EndPolicy", options_.end_policy,
+                             EndPolicy::Extrapolate);
+  for (Index i = 0; i < D_; ++i) dampers_[static_cast<std::size_t>(i)].validate(i);  // before their fields are read
   for (const Damper& d : dampers_) {
     const bool moving = options_.moving_contact && d.contact_point == ContactPoint::Moving;
     moving_.push_back(moving);
@@ -1776,7 +1827,6 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
 
   for (Index i = 0; i < D_; ++i) {
     const Damper& d = dampers_[static_cast<std::size_t>(i)];
-    d.validate(i);
     const Index s = shapes_for(d.member);
     const Shapes& sh = shapes_[static_cast<std::size_t>(s)];
     if (!(d.contact_coordinate >= Scalar(0) && d.contact_coordinate <= sh.length()))
@@ -1795,6 +1845,17 @@ FrictionDampedSystem<Scalar_, Law_, Modes>::FrictionDampedSystem(const FrameMode
         return std::numeric_limits<Scalar>::quiet_NaN();
     }));
     inertial_.push_back(options_.normal_load == NormalLoad::Inertial && d.normal_load == NormalLoad::Inertial);
+    if (d.separation == Separation::Separate) {  // N must be able to reach zero, and be watched
+      const std::string where = "PointDamper[" + std::to_string(i) + "]";
+      if (!inertial_.back())
+        detail::throw_invalid(where, "separation = Separate needs an inertial normal load (a constant N never "
+                                     "reaches zero): PointDamper::normal_load and ModelOptions::normal_load "
+                                     "must be Inertial", std::string("normal_load Constant"));
+      if (!options_.watch_lift_off)
+        detail::throw_invalid(where, "separation = Separate needs ModelOptions::watch_lift_off = true (an "
+                                     "unwatched normal force never separates the damper)",
+                              std::string("watch_lift_off = false"));
+    }
     const bool separable = d.separation == Separation::Separate && watch_lift_off(i);
     flight_slot_.push_back(separable ? num_separable_++ : Index(-1));
     const MemberEnd fallback = options_.end_policy == EndPolicy::Throw ? MemberEnd::Stop : MemberEnd::Extend;
@@ -1941,12 +2002,18 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
 
 template <class Scalar_, class Law_, int Modes>
 auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Scalar t, State& x) -> bool {
-  validate_state(mode, x, "FrictionDampedSystem::make_consistent");
+  validate_start(mode, t, x, "FrictionDampedSystem::make_consistent", "t", "x");
   std::vector<Index>& involved = involved_;
   involved.clear();
   for (Index i = 0; i < D_; ++i)
     if (mode[i] == ContactState::Stick) involved.push_back(i);
-  if (!resolve(mode, involved, t, x)) return false;
+  const long load_faults = load_fault_.count;
+  const bool resolved = resolve(mode, involved, t, x);
+  if (load_fault_.count != load_faults && load_fault_.t == t) {  // F_l(t0) is not finite: no start
+    stop(StopReason::NonFiniteLoad, load_fault_.load, t, x, mode);
+    return false;
+  }
+  if (!resolved) return false;
   {
     const Evaluation& e = evaluate(mode, t, x);
     for (Index i = 0; i < D_; ++i) {
@@ -2312,9 +2379,11 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
   const Index o = audit ? energy_offset() : -1;
   for (Index i = 0; i < D_; ++i) {
     const std::size_t iu = static_cast<std::size_t>(i);
+    // X_i of a fixed contact stays X0 (f does not depend on it; its column, if the state has
+    // one, is zero from the caller); without a moving contact the state has no X at all.
+    if (!moving_[iu]) continue;
     const Index cX = contact_offset() + i;
     J.col(cX).setZero();
-    if (!moving_[iu]) continue;  // X_i stays X0: f does not depend on it
     // Shapes at X and their X-derivatives: b = psi_u, b' = psi_u' (psi_u'' = 0: linear in the
     // element), a = s psi_w, a' = s psi_w', and psi_w''' = B (0, w1''', t1''', 0, w2''', t2''')
     // (constant in the element: 12/Le^3, 6/Le^2, -12/Le^3, 6/Le^2).

@@ -6,6 +6,7 @@
 #include "stickslip/contact.hpp"
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/contact_point.hpp"
+#include "stickslip/model/detail/enum_checks.hpp"
 #include "stickslip/model/normal_load.hpp"
 #include "stickslip/model/member_end.hpp"
 #include "stickslip/model/separation.hpp"
@@ -89,7 +90,8 @@ struct PointDamper {
                        share * mass * radius * spin * spin, std::move(law), share);
   }
 
-  /// Throws std::invalid_argument naming the damper and the parameter.
+  /// Throws std::invalid_argument naming the damper and the parameter (also for an enum field
+  /// holding a value that is not one of its enumerators).
   void validate(Eigen::Index index) const {
     const std::string where = "PointDamper[" + std::to_string(index) + "]";
     detail::require_finite(where, "contact_coordinate", contact_coordinate);
@@ -105,6 +107,12 @@ struct PointDamper {
     detail::require_non_negative(where, "wall_restitution", wall_restitution);
     if (!(wall_restitution <= Scalar(1)))
       detail::throw_invalid(where, "wall_restitution must be in [0, 1]", wall_restitution);
+    detail::require_enumerator(where, "initial_state", "ContactState", initial_state, ContactState::Separated);
+    detail::require_enumerator(where, "normal_load", "NormalLoad", normal_load, NormalLoad::Inertial);
+    detail::require_enumerator(where, "contact_point", "ContactPoint", contact_point, ContactPoint::Moving);
+    detail::require_enumerator(where, "separation", "Separation", separation, Separation::Separate);
+    detail::require_enumerator(where, "start_end", "MemberEnd", start_end, MemberEnd::Wall);
+    detail::require_enumerator(where, "finish_end", "MemberEnd", finish_end, MemberEnd::Wall);
     if (initial_state == ContactState::LiftOff)
       detail::throw_invalid(where, "initial_state cannot be lift-off", "lift_off");
     if (initial_state == ContactState::Separated)  // a run starts in contact; lift-off separates

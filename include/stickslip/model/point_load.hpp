@@ -4,6 +4,7 @@
 
 #include "stickslip/beam/ids.hpp"
 #include "stickslip/detail/validate.hpp"
+#include "stickslip/model/detail/enum_checks.hpp"
 
 #include <Eigen/Core>
 
@@ -61,6 +62,7 @@ struct PointLoad {
   void validate(Eigen::Index index) const {
     const std::string where = "PointLoad[" + std::to_string(index) + "]";
     detail::require_finite(where, "coordinate", coordinate);
+    detail::require_enumerator(where, "direction", "LoadDirection", direction, LoadDirection::Moment);
     detail::require_finite(where, "amplitude", amplitude);
     detail::require_finite(where, "omega", omega);
     detail::require_finite(where, "phase", phase);

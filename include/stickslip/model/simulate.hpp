@@ -3,6 +3,7 @@
 /// \brief Run a hybrid system with an integrator chosen at run time (command lines, sweeps).
 
 #include "stickslip/detail/validate.hpp"
+#include "stickslip/model/detail/enum_checks.hpp"
 #include "stickslip/ode.hpp"
 #include "stickslip/ode/exact_linear_stepper.hpp"
 #include "stickslip/ode/observer_ref.hpp"
@@ -75,6 +76,25 @@ template <class System>
 struct has_validate_state<System, std::void_t<decltype(std::declval<const System&>().validate_state(
                                       std::declval<const typename System::Mode&>(),
                                       std::declval<const typename System::State&>(), "simulate"))>>
+    : std::true_type {};
+
+/// Detects validate_start(mode, t0, x0, where) (FrictionDampedSystem): the start's checks,
+/// preferred to validate_state.
+template <class System, class = void>
+struct has_validate_start : std::false_type {};
+template <class System>
+struct has_validate_start<System, std::void_t<decltype(std::declval<const System&>().validate_start(
+                                      std::declval<const typename System::Mode&>(),
+                                      std::declval<typename System::Scalar>(),
+                                      std::declval<const typename System::State&>(), "simulate"))>>
+    : std::true_type {};
+
+/// Detects load_fault() (FrictionDampedSystem): the last non-finite load value, named in a
+/// NonFiniteState status.
+template <class System, class = void>
+struct has_load_fault : std::false_type {};
+template <class System>
+struct has_load_fault<System, std::void_t<decltype(std::declval<const System&>().load_fault().count)>>
     : std::true_type {};
 
 template <class System, class = void>
@@ -191,7 +211,16 @@ SimulationResult<System> simulate_exponential(System& system, typename System::M
   }
 }
 
-/// simulate() after its observer became a SimulationObserver: checks, then the chosen method.
+template <class System>
+SimulationResult<System> simulate_method(System& system, typename System::Mode mode,
+                                         typename System::Scalar t0, const typename System::State& x0,
+                                         typename System::Scalar t_end,
+                                         const RunOptions<typename System::Scalar>& options,
+                                         SimulationObserver<System> observer);
+
+/// simulate() after its observer became a SimulationObserver: checks (t0, t_end, the
+/// integrator, and the system's validate_start or validate_state), then the chosen method; a
+/// NonFiniteState status names a load whose value was not finite (load_fault()).
 template <class System>
 SimulationResult<System> simulate_dispatch(System& system, typename System::Mode mode,
                                            typename System::Scalar t0,
@@ -199,7 +228,35 @@ SimulationResult<System> simulate_dispatch(System& system, typename System::Mode
                                            typename System::Scalar t_end,
                                            const RunOptions<typename System::Scalar>& options,
                                            SimulationObserver<System> observer) {
-  if constexpr (has_validate_state<System>::value) system.validate_state(mode, x0, "simulate");
+  require_finite("simulate", "t0", t0);
+  require_finite("simulate", "t_end", t_end);
+  if (!(t_end >= t0)) throw_invalid("simulate", "t_end must be >= t0", t_end);
+  require_enumerator("simulate", "options.integrator", "Integrator", options.integrator, Integrator::Exponential);
+  if constexpr (has_validate_start<System>::value)
+    system.validate_start(mode, t0, x0, "simulate");
+  else if constexpr (has_validate_state<System>::value)
+    system.validate_state(mode, x0, "simulate");
+  if constexpr (has_load_fault<System>::value) {  // name a load whose value was not finite
+    const long faults = system.load_fault().count;
+    SimulationResult<System> r = simulate_method(system, std::move(mode), t0, x0, t_end, options, observer);
+    if (r.status == Status::NonFiniteState && system.load_fault().count != faults) {
+      const auto& f = system.load_fault();
+      r.message = "PointLoad[" + std::to_string(f.load) + "] is not finite at t = " + format_value(f.t) +
+                  " (F = " + format_value(f.value) + "): " + r.message;
+    }
+    return r;
+  } else {
+    return simulate_method(system, std::move(mode), t0, x0, t_end, options, observer);
+  }
+}
+
+/// The chosen method of simulate_dispatch, after its checks.
+template <class System>
+SimulationResult<System> simulate_method(System& system, typename System::Mode mode,
+                                         typename System::Scalar t0, const typename System::State& x0,
+                                         typename System::Scalar t_end,
+                                         const RunOptions<typename System::Scalar>& options,
+                                         SimulationObserver<System> observer) {
   switch (options.integrator) {
     case Integrator::RungeKutta4:
       if constexpr (has_step_rates<System>::value || has_linear_rates<System>::value) {

@@ -38,8 +38,11 @@ struct Inverse2 {
 /// residual itself is formed in floating point with an error of up to about K u of the same
 /// denominator, so a tighter bound could not be checked; a stable factorisation of the
 /// acceleration solve's matrices gives eta of about u. A solve that fails the check (or gives
-/// non-finite values) is redone with Eigen's PartialPivLU of M, which is then used for every
-/// further solve with that M. A singular M gives non-finite values, as with an LU alone.
+/// non-finite values) is redone with Eigen's PartialPivLU of M (factorised at the first such
+/// solve, kept for that M). Every solve tries the block form first, so z is a function of M and
+/// r alone, never of which right sides were solved before: a caller that solves an extra
+/// system (an observer reading the forces) leaves every later result bitwise unchanged. A
+/// singular M gives non-finite values, as with an LU alone.
 template <class Scalar, int K>
 class CheckedBlockSolve {
   static_assert(K % 2 == 0 && K >= 2 && K <= 8, "CheckedBlockSolve: K must be 2, 4, 6 or 8");
@@ -54,6 +57,7 @@ class CheckedBlockSolve {
     m_ = m;
     norm_m_ = m.cwiseAbs().rowwise().sum().maxCoeff();
     pivoting_ = false;
+    lu_ready_ = false;
     const Half A = m.template topLeftCorner<H, H>();
     c_ = m.template bottomLeftCorner<H, H>();
     a_inv_ = A.inverse();
@@ -65,7 +69,6 @@ class CheckedBlockSolve {
 
   /// z with M z = r (M of the last compute()).
   VectorK solve(const VectorK& r) {
-    if (pivoting_) return lu_.solve(r);
     VectorK z;
     const HalfVector y1 = a_inv_ * r.template head<H>();
     HalfVector t = r.template tail<H>();
@@ -77,13 +80,14 @@ class CheckedBlockSolve {
     res.noalias() -= m_ * z;
     const Scalar bound = Scalar(16 * K) * std::numeric_limits<Scalar>::epsilon() *
                          (norm_m_ * z.cwiseAbs().maxCoeff() + r.cwiseAbs().maxCoeff());
-    if (res.cwiseAbs().maxCoeff() <= bound) return z;  // (false for NaN: to the LU)
-    lu_.compute(m_);
-    pivoting_ = true;
+    pivoting_ = !(res.cwiseAbs().maxCoeff() <= bound);  // (true for NaN: to the LU)
+    if (!pivoting_) return z;
+    if (!lu_ready_) lu_.compute(m_);
+    lu_ready_ = true;
     return lu_.solve(r);
   }
 
-  /// True when the solves with the current M use the pivoted LU (the block form failed its check).
+  /// True when the last solve used the pivoted LU (the block form failed its check).
   bool pivoting() const noexcept { return pivoting_; }
 
  private:
@@ -94,6 +98,7 @@ class CheckedBlockSolve {
   Half a_inv_ = Half::Identity(), s_inv_ = Half::Identity(), e_ = Half::Zero(), c_ = Half::Zero();
   Eigen::PartialPivLU<MatrixK> lu_;
   bool pivoting_ = false;
+  bool lu_ready_ = false;  // lu_ holds the factors of m_
 };
 
 }  // namespace detail
