@@ -1565,6 +1565,24 @@ class FrictionDampedSystem {
   /// Candidates (dampers that may separate, in contact) whose normal force is not positive leave
   /// the member; the other dampers' states are then resolved again. False when resolve fails.
   bool land_or_separate(Mode& mode, const std::vector<Index>& candidates, Scalar t, State& x);
+  /// land_or_separate over every damper in contact that may separate: no such damper is left
+  /// pressed by N <= 0, where its N guard would start on its triggering side and not fire.
+  bool separate_unpressed(Mode& mode, Scalar t, State& x) {
+    lifting_.clear();
+    for (Index i = 0; i < D_; ++i)
+      if (flight_slot_[static_cast<std::size_t>(i)] >= 0 && mode[i] != ContactState::Separated) lifting_.push_back(i);
+    return land_or_separate(mode, lifting_, t, x);
+  }
+  /// The first damper in contact whose lift-off is watched and that may not separate, with
+  /// N <= 0 at (mode, t, x); -1 when there is none.
+  Index unpressed_contact(const Mode& mode, Scalar t, const State& x) {
+    const Evaluation& e = evaluate(mode, t, x);
+    for (Index i = 0; i < D_; ++i)
+      if (watch_lift_off(i) && flight_slot_[static_cast<std::size_t>(i)] < 0 && mode[i] != ContactState::Separated &&
+          e.finite && !(e.N[i] > Scalar(0)))
+        return i;
+    return -1;
+  }
 
   // ---- resting at a wall (docs/model.md "Resting at a wall"; defined below the class) --------
   /// A stuck damper resting at a wall: the tangential force f solved for splits into friction
@@ -1993,11 +2011,16 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::transition(Mode& mode, const Tr
   }
   if (!separation_transition(mode, t, x))
     return stop(StopReason::NoConsistentState, impacting_.front(), t, x, mode);
-  const bool consistent = resolve(mode, involved, t, x) && land_or_separate(mode, impacting_, t, x);
+  // The new states leave no damper in contact with N <= 0 (one switch changes the accelerations
+  // and so the normal forces of the others): a damper that may separate leaves the member, one
+  // that may not stops the run at its lift-off.
+  const bool consistent = resolve(mode, involved, t, x) && separate_unpressed(mode, t, x);
   if (has_walls_) release_pulled_holds(mode, t, x);
   forget_left_walls(mode);
-  return consistent ? TransitionAction::proceed()
-                    : stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+  if (!consistent)
+    return stop(StopReason::NoConsistentState, involved.empty() ? 0 : involved.front(), t, x, mode);
+  const Index lifted = unpressed_contact(mode, t, x);
+  return lifted < 0 ? TransitionAction::proceed() : stop(StopReason::LiftOff, lifted, t, x, mode);
 }
 
 template <class Scalar_, class Law_, int Modes>
@@ -2028,11 +2051,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::make_consistent(Mode& mode, Sca
     }
   }
   // Dampers that may separate: those without a positive normal force leave the member at t0.
-  lifting_.clear();
-  for (Index i = 0; i < D_; ++i)
-    if (flight_slot_[static_cast<std::size_t>(i)] >= 0 && mode[i] != ContactState::Separated)
-      lifting_.push_back(i);
-  const bool consistent = land_or_separate(mode, lifting_, t, x);
+  const bool consistent = separate_unpressed(mode, t, x);
   if (has_walls_) release_pulled_holds(mode, t, x);
   forget_left_walls(mode);
   return consistent;
