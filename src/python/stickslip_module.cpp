@@ -245,6 +245,8 @@ Run run_simulation(Py& py_system, double t_end, const RunOptions<double>& option
                    std::optional<StatisticsWindow<double>> window, bool consistent) {
   constexpr bool kContacts = std::is_same_v<Py, PyContactSystem>;
   using Sys = std::conditional_t<kContacts, CSystem, System>;
+  if (std::isnan(evaluate_from))  // every comparison with NaN is false: nothing would be recorded
+    throw std::invalid_argument("simulate: evaluate_from must be a time or inf (no forces), got nan");
   if constexpr (kContacts) {
     if (!probes.empty())
       throw std::invalid_argument("simulate: probes must be empty for a ContactSystem (record_states gives q: "
@@ -257,6 +259,7 @@ Run run_simulation(Py& py_system, double t_end, const RunOptions<double>& option
     State x = x0 ? *x0 : system.initial_state();
     Mode mode = mode0 ? to_mode(*mode0) : system.requested_mode();
     check_start(system, mode, x, "simulate");
+    system.validate_start(mode, t0, x, "simulate");  // t0 and every x0[k] finite, named
     std::vector<System::Vector> shapes;
     if constexpr (!kContacts)
       for (const Probe& p : probes) shapes.push_back(system.point_shape(p.member, p.coordinate, p.direction));
@@ -506,7 +509,8 @@ void bind_system(py::module_& m) {
       .value("None_", System::StopReason::None)
       .value("LiftOff", System::StopReason::LiftOff)
       .value("LeftMember", System::StopReason::LeftMember)
-      .value("NoConsistentState", System::StopReason::NoConsistentState);
+      .value("NoConsistentState", System::StopReason::NoConsistentState)
+      .value("NonFiniteLoad", System::StopReason::NonFiniteLoad);
   // PySystem: the system and the lock of the calls that run or evaluate it (call_guard.hpp).
   py::class_<PySystem>(m, "FrictionDampedSystem",
                        "Frame modes + friction dampers + loads (paper eqs 26-29). Calls that run or evaluate one "

@@ -164,3 +164,19 @@ def test_unbounded_requests_are_refused_naming_the_limit():
         ss.poincare_sections(system, T, max_period=2**30)
     with pytest.raises(ValueError, match="parts must be <= [0-9]+ \\(4 x the hardware threads"):
         ss.continue_orbits(system, lambda s, p: s, 1.0, 2.0, T, parts=5000)
+
+
+@pytest.mark.parametrize("kind", ["damped", "contacts"])
+def test_run_inputs_are_named_before_the_first_evaluation(kind):
+    # A non-finite t0 or x0 entry is named as such (it was reported as an inconsistent or
+    # lifted-off start, or by the shapes as "eps = nan"); evaluate_from = nan would record nothing.
+    system, _ = cantilever_system(lambda m: ss.PointLoad.harmonic(m, 0.2, ss.LoadDirection.GlobalX, 1.0, 100.0), kind)
+    opts = ss.RunOptions("dopri5")
+    with pytest.raises(ValueError, match="t0"):
+        ss.simulate(system, 0.01, opts, t0=math.nan)
+    x0 = np.zeros(system.state_size)
+    x0[1] = math.inf
+    with pytest.raises(ValueError, match=r"x0\[1\]"):
+        ss.simulate(system, 0.01, opts, x0=x0)
+    with pytest.raises(ValueError, match="evaluate_from"):
+        ss.simulate(system, 0.01, opts, evaluate_from=math.nan)

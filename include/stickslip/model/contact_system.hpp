@@ -128,6 +128,15 @@ class ContactSystem {
   ///         wrong size or with a state that is not an enumerator / not allowed under a held normal.
   void validate_state(const Mode& mode, const State& x, const char* where = "ContactSystem") const;
 
+  /// validate_state, and t0 and every x0[k] finite (simulate() calls it before the first
+  /// evaluation). \throws std::invalid_argument naming `where` and the entry.
+  void validate_start(const Mode& mode, Scalar t0, const State& x0, const char* where = "ContactSystem") const {
+    validate_state(mode, x0, where);
+    detail::require_finite(where, "t0", t0);
+    for (Index k = 0; k < x0.size(); ++k)
+      if (!std::isfinite(x0[k])) detail::throw_invalid(where, "x0[" + std::to_string(k) + "] must be finite, got", x0[k]);
+  }
+
   /// Makes (mode, x) consistent at t: a contact with |v| above the velocity tolerance slides in
   /// sgn(v), one at rest is tried stuck, a stuck contact whose force exceeds mu_s N slips (the
   /// worst first, until every stuck force lies within mu_s N), stuck velocities are

@@ -648,16 +648,8 @@ class FrictionDampedSystem {
       detail::throw_invalid("PointLoad", "coordinate must lie on member " + std::to_string(load.member) +
                                              " (valid range [0, " + detail::format_value(shapes.length()) + "])",
                             load.coordinate);
-    typename Shapes::Values v = shapes.evaluate(load.coordinate);
-    const Scalar c = shape_direction_[shape].first, s = shape_direction_[shape].second;
-    switch (load.direction) {
-      case LoadDirection::Axial: return v.psi_u;
-      case LoadDirection::Transverse: return v.psi_w;
-      case LoadDirection::Moment: return v.dpsi_w;
-      case LoadDirection::GlobalX: return c * v.psi_u - s * v.psi_w;
-      case LoadDirection::GlobalY: return s * v.psi_u + c * v.psi_w;
-    }
-    return v.psi_w;
+    const typename Shapes::Values v = shapes.evaluate(load.coordinate);
+    return load_direction_row(v, shape_direction_[shape].first, shape_direction_[shape].second, load.direction);
   }
 
   void allocate_workspace() {

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <type_traits>
 
 namespace stickslip {
 
@@ -69,5 +70,22 @@ struct PointLoad {
     detail::require_finite(where, "offset", offset);
   }
 };
+
+/// The modal row of a point load in `direction` from a member's shape values at the point
+/// (MemberShapes::Values: psi_u, psi_w, dpsi_w) and the member's direction cosine and sine:
+/// Axial psi_u, Transverse psi_w, Moment psi_w', GlobalX c psi_u - s psi_w, GlobalY
+/// s psi_u + c psi_w.
+template <class Values, class Scalar>
+auto load_direction_row(const Values& v, Scalar c, Scalar s, LoadDirection direction)
+    -> std::decay_t<decltype(v.psi_u)> {
+  switch (direction) {
+    case LoadDirection::Axial: return v.psi_u;
+    case LoadDirection::Transverse: return v.psi_w;
+    case LoadDirection::Moment: return v.dpsi_w;
+    case LoadDirection::GlobalX: return c * v.psi_u - s * v.psi_w;
+    case LoadDirection::GlobalY: return s * v.psi_u + c * v.psi_w;
+  }
+  detail::throw_invalid("PointLoad", "direction must be a LoadDirection enumerator", static_cast<int>(direction));
+}
 
 }  // namespace stickslip

@@ -57,16 +57,7 @@ auto ContactSystem<Scalar_, Contact_>::load_row(const FrameModel<Scalar>& frame,
                                                 const Load& load, Index l) -> Vector {
   const std::string where = "PointLoad[" + std::to_string(l) + "]";
   const MemberShapes<Scalar> shapes = shapes_at_point(frame, basis, StructurePoint<Scalar>{load.member, load.coordinate}, where);
-  const auto v = shapes.evaluate(load.coordinate);
-  const Scalar c = shapes.cos(), s = shapes.sin();
-  switch (load.direction) {
-    case LoadDirection::Axial: return v.psi_u;
-    case LoadDirection::Transverse: return v.psi_w;
-    case LoadDirection::Moment: return v.dpsi_w;
-    case LoadDirection::GlobalX: return c * v.psi_u - s * v.psi_w;
-    case LoadDirection::GlobalY: return s * v.psi_u + c * v.psi_w;
-  }
-  detail::throw_invalid(where, "direction must be a LoadDirection enumerator", static_cast<int>(load.direction));
+  return load_direction_row(shapes.evaluate(load.coordinate), shapes.cos(), shapes.sin(), load.direction);
 }
 
 template <class Scalar_, class Contact_>
@@ -249,7 +240,7 @@ void ContactSystem<Scalar_, Contact_>::project_stuck_velocities(const Mode& mode
 
 template <class Scalar_, class Contact_>
 bool ContactSystem<Scalar_, Contact_>::make_consistent(Mode& mode, Scalar t, State& x) {
-  validate_state(mode, x, "ContactSystem::make_consistent");
+  validate_start(mode, t, x, "ContactSystem::make_consistent");
   const Mode before = mode;
   solve(mode, t, x);
   for (Index i = 0; i < D_; ++i) {  // component 4's rule 2: sliding where |v| > tolerance
