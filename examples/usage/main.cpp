@@ -30,6 +30,21 @@ int main() {
   std::printf("status %s at t = %g s, %ld contact switches, %ld steps, energy residual %.3e J of %.3e J\n",
               to_string(result.status), result.t, result.stats.events, result.stats.accepted_steps,
               audit.residual, std::abs(audit.external_work));
-  // The run must finish and balance its energy to well within the default tolerance (rtol 1e-6).
-  return result.ok() && std::abs(audit.residual) <= 1e-4 * std::abs(audit.external_work) ? 0 : 1;
+  // --- README excerpt (ContactSystem) begins ---
+  std::vector<PointContact<double>> contacts{PointContact<double>::grounded(
+      {blade, 0.1}, PlaneDirection<double>::global_x(), CoulombLaw<double>(0.35, 0.3), /*N=*/10.0)};
+  ContactSystem<double> sliders(frame, basis, contacts, loads);   // then simulate(), shooting, ...
+  // --- README excerpt (ContactSystem) ends ---
+  auto xs = sliders.initial_state();
+  auto ms = sliders.requested_mode();
+  sliders.make_consistent(ms, 0.0, xs);
+  const auto slider_run = simulate(sliders, ms, 0.0, xs, 0.2, RunOptions<double>{}, observer);
+  const auto slider_audit = sliders.energy_balance(slider_run.x, 0.0);
+  std::printf("grounded slider: status %s, %zu switches, energy audit relative residual %.2e\n",
+              to_string(slider_run.status), sliders.events().size(), slider_audit.relative_residual());
+  // The runs must finish and balance their energy to well within the default tolerance (rtol 1e-6).
+  return result.ok() && std::abs(audit.residual) <= 1e-4 * std::abs(audit.external_work) && slider_run.ok() &&
+                 slider_audit.relative_residual() <= 1e-4
+             ? 0
+             : 1;
 }
