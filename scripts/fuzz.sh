@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 harnesses=("$@")
-if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(contact stepper frame_modes member_shapes model); fi
+if [ ${#harnesses[@]} -eq 0 ]; then harnesses=(contact stepper frame_modes member_shapes model steady_state separation); fi
 cxx=${STICKSLIP_FUZZ_CXX:-$(command -v clang++ || true)}
 if [ -z "${cxx}" ]; then
   echo "scripts/fuzz.sh: clang++ not found (Debian: apt-get install clang libclang-rt-dev)" >&2

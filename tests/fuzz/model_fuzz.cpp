@@ -20,6 +20,7 @@
 //  * Success means t = t_end, a finite state and, with the audit on, a finite energy residual;
 //    other statuses carry a message.
 #include "fuzz/fuzz_frames.hpp"
+#include "fuzz/fuzz_laws.hpp"
 
 #include <stickslip/model.hpp>
 
@@ -35,23 +36,7 @@ using stickslip_fuzz::require;
 using stickslip_fuzz::str;
 using System = FrictionDampedSystem<double>;
 
-FrictionLawVariant<double> read_law(stickslip_fuzz::Input& in) {
-  switch (in.choice(3)) {
-    case 0: {
-      const double mu_s = in.real(0.0, 1.0), mu_k = in.real(0.0, 1.0);
-      return CoulombLaw<double>(mu_s, mu_k);
-    }
-    case 1: {
-      const double mu_s = in.real(0.0, 1.0), mu_k = in.real(0.0, 1.0);
-      const double v_s = in.real(1e-6, 1.0), exponent = in.real(0.1, 4.0);
-      return StribeckLaw<double>(mu_s, mu_k, v_s, exponent);
-    }
-    default: {
-      const double mu = in.real(0.0, 1.0), v_eps = in.real(1e-9, 1e-2);
-      return RegularisedLaw<double>(mu, v_eps, in.flag() ? RegularisedShape::LinearSaturated : RegularisedShape::Tanh);
-    }
-  }
-}
+using stickslip_fuzz::read_law;
 
 /// One short (6), one long (7) or right (else).
 Eigen::Index size_error(unsigned c) { return c == 6 ? -1 : (c == 7 ? 1 : 0); }
@@ -103,11 +88,7 @@ void run(stickslip_fuzz::Input& in) {
   const unsigned nl = in.choice(3);
   for (unsigned i = 0; i < nl; ++i) {
     const auto member = pick_member();
-    const double L = f.frame.member(member).length;
-    const double at = in.real(0.0, L);
-    const auto direction = static_cast<LoadDirection>(in.choice(5));
-    const double amplitude = in.real(-100.0, 100.0), omega = in.real(0.0, 1e4), phase = in.real(0.0, 6.3);
-    loads.push_back(System::Load::harmonic(member, at, direction, amplitude, omega, phase));
+    loads.push_back(stickslip_fuzz::read_load(in, member, f.frame.member(member).length, 100.0, 1e4));
   }
   ModelOptions<double> options;
   options.normal_load = in.flag() ? NormalLoad::Constant : NormalLoad::Inertial;

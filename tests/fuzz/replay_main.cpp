@@ -18,6 +18,8 @@ int stickslip_fuzz_stepper(const std::uint8_t*, std::size_t);
 int stickslip_fuzz_frame_modes(const std::uint8_t*, std::size_t);
 int stickslip_fuzz_member_shapes(const std::uint8_t*, std::size_t);
 int stickslip_fuzz_model(const std::uint8_t*, std::size_t);
+int stickslip_fuzz_steady_state(const std::uint8_t*, std::size_t);
+int stickslip_fuzz_separation(const std::uint8_t*, std::size_t);
 
 namespace {
 
@@ -34,6 +36,8 @@ constexpr Harness kHarnesses[] = {
     {"frame_modes", stickslip_fuzz_frame_modes},
     {"member_shapes", stickslip_fuzz_member_shapes},
     {"model", stickslip_fuzz_model},
+    {"steady_state", stickslip_fuzz_steady_state},
+    {"separation", stickslip_fuzz_separation},
 };
 
 int usage() {

@@ -131,6 +131,74 @@ TEST(ComputeModesChecks, CantileverWithTinyElementHasTheEulerBernoulliFrequencie
   }
 }
 
+// The paper's blade section as a clamped 0.2 m cantilever along X on the given stations.
+FrameModel<double> blade_cantilever(const std::vector<double>& stations, bool clamp_root = true) {
+  const SectionProperties<double> blade{2.06e11, 7800.0, 6e-5, 2e-11};
+  FrameModel<double> model;
+  const auto root = model.add_node(0.0, 0.0), tip = model.add_node(0.2, 0.0);
+  model.add_member(root, tip, blade, stations);
+  model.clamp(clamp_root ? root : tip);
+  return model;
+}
+
+// Stations of 20 elements of 10 mm, one of them (at index `at`) split `gap` from its start.
+std::vector<double> fine_stations_with_gap(int at, double gap) {
+  std::vector<double> s;
+  for (int i = 0; i <= 20; ++i) {
+    s.push_back(0.01 * i);
+    if (i == at) s.push_back(0.01 * i + gap);
+  }
+  return s;
+}
+
+TEST(ComputeModesChecks, ShortElementIsRefusedWhereItsRoundOffWouldSwampTheModes) {
+  // A clamped 0.2 m blade cantilever on stations {0, 0.1, 0.1 + gap, 0.2} returned, as success,
+  // omega_1 1 % low (gap 1e-6 m) and omega = 734, 5521, 13976 rad/s for ~261, 1648, 5546 (gap
+  // 1e-9 m): the round-off of the short element's 12 EI/gap^3 in the assembled K swamps the
+  // structure's stiffness (docs/modal.md, "Short elements"). Reference: Euler-Bernoulli
+  // clamped-free omega_n = (beta_n L)^2 sqrt(EI / (rho A L^4)), beta_n L = 1.875104, 4.694091,
+  // 7.854757.
+  const SectionProperties<double> blade{2.06e11, 7800.0, 6e-5, 2e-11};
+  const double unit = bending_unit(blade, 0.2);
+  const double bl[] = {1.875104069, 4.694091133, 7.854757438};
+  // Refused, naming the element (member 0, element 1), its length and the ratio to the member.
+  for (double gap : {1e-6, 1e-9}) {
+    const auto model = blade_cantilever({0.0, 0.1, 0.1 + gap, 0.2});
+    EXPECT_INVALID_ARGUMENT(model.assemble(), "member 0, element 1 (length " + detail::format_value(0.1 + gap - 0.1) + " m) is");
+    EXPECT_INVALID_ARGUMENT(model.assemble(), "times shorter than the longest member (0.20000000000000001 m)");
+    EXPECT_INVALID_ARGUMENT(model.assemble(), "max_element_length_ratio()");
+  }
+  // Gap 1e-3 m (ratio 200) is accepted and right to the discretisation error of this coarse
+  // mesh: conforming Hermite elements with consistent mass give upper bounds (Rayleigh-Ritz), and
+  // two 0.1 m elements put omega_1 within 1e-3 (measured 4.7e-4; the short element adds ~1e-5).
+  for (ModalSolver solver : {ModalSolver::Dense, ModalSolver::Sparse}) {
+    const auto basis = compute_modes(blade_cantilever({0.0, 0.1, 0.101, 0.2}).assemble(), options_with(3, solver));
+    EXPECT_EQ(basis.num_rigid_body_modes(), 0);
+    for (int i = 0; i < 3; ++i) EXPECT_GT(basis.omega()(i), bl[i] * bl[i] * unit * (1 - 1e-12)) << i;
+    EXPECT_NEAR(basis.omega()(0) / (bl[0] * bl[0] * unit), 1.0, 1e-3);
+  }
+  // On a 10 mm mesh, a short element in mid-span (gap 1e-3 m) or at the free tip at L/h = 800
+  // (just below the limit 908; the tip is the worst place, round-off <= ~3.3 eps 800^3 = 4e-7 in
+  // lambda) keeps omega_1..3 within 5e-5 of the closed form: the 20-element mesh errs by 1.6e-5 at
+  // mode 3 (order-4 convergence: the 40-element mesh's 1e-7 at mode 2 times 2^4 (beta_3/beta_2)^4
+  // = 125), 2e-6 at mode 2. At L/h = 1000 the tip element is refused (round-off up to 3e-6 in
+  // omega_1), unless the cantilever is clamped at that end (then the element only stiffens a
+  // support, and the modes are right).
+  const std::vector<std::vector<double>> accepted{fine_stations_with_gap(10, 1e-3),
+                                                  fine_stations_with_gap(19, 0.01 - 0.2 / 800)};
+  for (const auto& stations : accepted)
+    for (ModalSolver solver : {ModalSolver::Dense, ModalSolver::Sparse}) {
+      const auto basis = compute_modes(blade_cantilever(stations).assemble(), options_with(3, solver));
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(basis.omega()(i) / (bl[i] * bl[i] * unit), 1.0, 5e-5)
+            << stations[11] << " " << to_string(solver) << ", mode " << i;
+    }
+  const auto tip_1000 = fine_stations_with_gap(19, 0.01 - 0.2 / 1000);
+  EXPECT_INVALID_ARGUMENT(blade_cantilever(tip_1000).assemble(), "member 0, element 20 (length");
+  const auto basis = compute_modes(blade_cantilever(tip_1000, false).assemble(), options_with(3, ModalSolver::Dense));
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(basis.omega()(i) / (bl[i] * bl[i] * unit), 1.0, 5e-5) << i;
+}
+
 // The grounded oscillators (K = diag(800, 1800, 50), M = diag(2, 2, 0.5)); the tests below
 // corrupt K or the rigid-body count by hand.
 AssembledFrame<double> oscillators() { return grounded_oscillators().assemble(); }

@@ -221,13 +221,41 @@ class FrameModel {
   /// process); copied into AssembledFrame::model_id and ModalBasis::model_id().
   std::uint64_t id() const noexcept { return id_; }
 
+  /// Largest ratio (longest member of the model) / (element length) that assemble() accepts for
+  /// an element of a locally refined mesh (shorter than half its member's longest element) with
+  /// no clamped end node: (tau / (6 eps))^(1/3), about 908 for double (tau = 1e-6, the relative
+  /// accuracy of omega kept; sqrt(eps) for types too coarse for 1e-6). Derivation: every entry of
+  /// the assembled K carries a relative round-off of ~eps, so an element of length h adds an
+  /// absolute error ~eps 12 EI / h^3 to the stiffness of any motion of its nodes (its rigid
+  /// motions are no longer exact null vectors); against the bending stiffness ~3 EI / L^3 that a
+  /// lowest mode of a member of length L shows, lambda = omega^2 is off by up to ~4 eps (L / h)^3
+  /// relative. Measured on a clamped 0.2 m cantilever with a short element at its free end:
+  /// 0.7 eps (L / h)^3 to 3.3 eps (L / h)^3 for L / h = 2e3 and 2e4 (L / h = 1.6e4 gave omega_1
+  /// wrong by 9e-4, a short element in mid-span at L / h = 2e5 1e-2, every check passing: no
+  /// solver recovers what the assembly rounded away); the limit keeps 12 eps (L / h)^3, a factor
+  /// 4 to 17 above those, below 2 tau. An element with a clamped end node is exempt: its stiffness then
+  /// supports the other node, which the modes hardly move. Uniform meshes are exempt too: the same
+  /// round-off bounds their accuracy (docs/modal.md, "Accuracy limit"), which a member of more
+  /// than ~900 elements reaches.
+  static Scalar max_element_length_ratio() {
+    using std::cbrt;
+    using std::sqrt;
+    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    const Scalar tau = std::max(Scalar(1e-6), sqrt(eps));
+    return cbrt(tau / (Scalar(6) * eps));
+  }
+
   /// Assemble K and M over the free DOFs (constrained DOFs eliminated), element matrices from
   /// FrameElement::global_stiffness / global_mass(type), plus point masses, rotary inertias and
   /// springs on the diagonal. Cost O(num_elements()).
   /// \throws std::invalid_argument when there are no free DOFs, an element matrix overflows (the
   ///         message names the member, the element and EA/L, EI/L^3, rho A L), a sum of entries
   ///         of K or M overflows (names the DOF), or a free DOF has no mass (a node not attached
-  ///         to any member and carrying no point mass / rotary inertia)
+  ///         to any member and carrying no point mass / rotary inertia), or an element of a
+  ///         locally refined mesh without a clamped end node is more than
+  ///         max_element_length_ratio() times shorter than the longest member (names the member,
+  ///         the element, both lengths and the ratio: its round-off would make the lowest
+  ///         frequencies wrong)
   AssembledFrame<Scalar> assemble(MassType type = MassType::Consistent) const {
     static const char* where = "FrameModel::assemble";
     AssembledFrame<Scalar> out;
@@ -238,6 +266,7 @@ class FrameModel {
     if (n == 0)
       throw std::invalid_argument(std::string(where) + ": the model has no free DOFs (" +
                                   std::to_string(num_nodes()) + " nodes, all DOFs constrained)");
+    check_short_elements(where);
 
     using Triplet = Eigen::Triplet<Scalar, typename AssembledFrame<Scalar>::SparseMatrix::StorageIndex>;
     using StorageIndex = typename AssembledFrame<Scalar>::SparseMatrix::StorageIndex;
@@ -395,6 +424,39 @@ class FrameModel {
         ", rho A L = " + detail::format_value(s.mass_per_length() * L) +
         ", rho A L^3 = " + detail::format_value(s.mass_per_length() * L * L * L) +
         "): the element is too short or too long for its section");
+  }
+
+  // Refuses a locally refined element whose stiffness round-off would swamp the lowest modes (see
+  // max_element_length_ratio()), unless one of its end nodes is clamped.
+  void check_short_elements(const char* where) const {
+    const Scalar limit = max_element_length_ratio();
+    Scalar reference(0);
+    for (const Member& member : members_) reference = std::max(reference, member.length);
+    const auto clamped = [this](Index node) {
+      for (Index d = 0; d < 3; ++d)
+        if (!constrained_[idx(global_dof(node, static_cast<Dof>(d)))]) return false;
+      return true;
+    };
+    for (std::size_t m = 0; m < members_.size(); ++m) {
+      const Member& member = members_[m];
+      Scalar longest(0);
+      for (std::size_t e = 0; e + 1 < member.stations.size(); ++e)
+        longest = std::max(longest, member.stations[e + 1] - member.stations[e]);
+      for (std::size_t e = 0; e + 1 < member.stations.size(); ++e) {
+        const Scalar h = member.stations[e + 1] - member.stations[e];
+        if (!(h * limit < reference && Scalar(2) * h < longest) || clamped(member.nodes[e]) ||
+            clamped(member.nodes[e + 1]))
+          continue;
+        throw std::invalid_argument(
+            std::string(where) + ": member " + std::to_string(m) + ", element " + std::to_string(e) +
+            " (length " + detail::format_value(h) + " m) is " + detail::format_value(reference / h) +
+            " times shorter than the longest member (" + detail::format_value(reference) +
+            " m), beyond max_element_length_ratio() = " + detail::format_value(limit) +
+            ": the round-off of its stiffness 12 EI/L^3 (relative ~eps (L_member/L)^3 to the frame's) would "
+            "make the lowest frequencies wrong; merge its end station into a neighbour or refine the mesh around it "
+            "less");
+      }
+    }
   }
 
   // The assembled sums of finite element entries may still overflow (e.g. many heavy point
