@@ -180,7 +180,7 @@ bool m_orthonormalise(const Eigen::SparseMatrix<Scalar>& M, Eigen::Matrix<Scalar
 /// eigenvalue 1/(-sigma) exceeds the elastic ones by lambda_{r+1}/(-sigma), so three steps
 /// separate them to round-off) and deflated; Lanczos then sees only the elastic spectrum.
 /// Without deflation the dominant 1/(-sigma) makes Lanczos return spurious and inaccurate
-/// modes on small frames (issue #18).
+/// modes on small frames.
 template <class Scalar>
 RawModes<Scalar> sparse_modes(const AssembledFrame<Scalar>& frame, const ModalOptions<Scalar>& options,
                               Eigen::Index nev, Scalar lambda_scale, ModalSolveReport<Scalar>& report) {

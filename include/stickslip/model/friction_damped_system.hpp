@@ -522,7 +522,7 @@ class FrictionDampedSystem {
     return b;
   }
 
-  // ---- linear part per discrete mode (issue #19; docs/model.md, "Linear part per discrete mode")
+  // ---- linear part per discrete mode (docs/model.md, "Linear part per discrete mode")
   /// Number of linear components of linear_part(): the state without the energy-audit integrals,
   /// which are quadratures (their rates depend on t and the other components only).
   Index linear_size() const noexcept { return state_size() - audit_size(); }
@@ -545,7 +545,7 @@ class FrictionDampedSystem {
   /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
   bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
 
-  // ---- Jacobian df/dx (issue #21: the variational equations of shooting; has_jacobian_v) -------
+  // ---- Jacobian df/dx (the variational equations of shooting; has_jacobian_v) -------
   /// J = df/dx of rhs() in mode `mode` at (t, x), state_size() x state_size(). Where the mode is
   /// exact (linear_part: every damper stuck, or slipping or flying at a fixed contact under a
   /// CoulombLaw, no time_function load) J_LL = A_m of linear_part, the audit rows are
@@ -714,7 +714,7 @@ class FrictionDampedSystem {
     dpsi_w_.col(i) = side * v.dpsi_w;
   }
 
-  /// Frozen affine guards of an inexact mode (issue #19: long Lawson steps while slipping),
+  /// Frozen affine guards of an inexact mode (long Lawson steps while slipping),
   /// completed from the rows of guards() that linear_part_by_probes recorded under the frozen solve
   /// (X = lp_X_, mu = lp_mu_): an end guard reads the frozen linear part's X (g = X, L - X), and
   /// g0 is corrected so that the rows Gx x_L + g(t) equal guards() at (t, x).
@@ -2156,7 +2156,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, S
   return true;
 }
 
-// ---- Jacobian df/dx (issue #21) ----------------------------------------------------------------
+// ---- Jacobian df/dx ----------------------------------------------------------------
 
 template <class Scalar_, class Law_, int Modes>
 bool FrictionDampedSystem<Scalar_, Law_, Modes>::exact_mode(const Mode& mode) const {

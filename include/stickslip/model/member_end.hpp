@@ -1,6 +1,6 @@
 #pragma once
 /// \file member_end.hpp
-/// \brief What a damper's contact point does when it reaches an end of its member (issue #22).
+/// \brief What a damper's contact point does when it reaches an end of its member.
 
 #include <cstdint>
 

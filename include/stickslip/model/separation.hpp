@@ -1,6 +1,6 @@
 #pragma once
 /// \file separation.hpp
-/// \brief What a damper does when its normal force reaches zero (issue #22).
+/// \brief What a damper does when its normal force reaches zero.
 
 #include <cstdint>
 

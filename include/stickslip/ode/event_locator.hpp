@@ -177,7 +177,7 @@ RootBracket<Scalar> illinois_root(Phi&& phi, Scalar lo, Scalar flo, Scalar hi, S
 /// second evaluation halves it where Newton is slow, e.g. at a multiple root). Once a correction
 /// is below tol / 2 the next point is set tol / 4 past the predicted root, on the far side from
 /// t_k, so that the bracket closes around it. Near a simple root that is 2-5 evaluations where
-/// the Illinois method takes 9-20 (issue #19: event location on the closed form of an exact mode,
+/// the Illinois method takes 9-20 (event location on the closed form of an exact mode,
 /// where the slope costs one product).
 template <class Scalar, class PhiSlope>
 RootBracket<Scalar> newton_root(PhiSlope&& phi, Scalar lo, Scalar flo, Scalar slo, Scalar hi,
