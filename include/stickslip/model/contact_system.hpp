@@ -178,11 +178,11 @@ class ContactSystem {
 
   void solve(const Mode& mode, Scalar t, const State& x) const;
   bool has_stick_state(Index i) const {
-    return detail::with_machine(machines_[static_cast<std::size_t>(i)],
+    return detail::with_law(machines_[static_cast<std::size_t>(i)],
                                 [](const auto& m) { return std::decay_t<decltype(m)>::has_stick_state; });
   }
   Index guards_of(const Mode& mode, Index i) const {
-    return detail::with_machine(machines_[static_cast<std::size_t>(i)],
+    return detail::with_law(machines_[static_cast<std::size_t>(i)],
                                 [&](const auto& m) { return m.num_guards(mode[i], false); });
   }
   bool resolve(Mode& mode, Scalar t, State& x);

@@ -36,13 +36,4 @@ contact_machine_t<Law> make_contact_machine(const Law& law, Scalar tol) {
   }
 }
 
-/// f(machine) with the concrete CoulombContact.
-template <class Machine, class F>
-decltype(auto) with_machine(const Machine& m, F&& f) {
-  if constexpr (is_std_variant<Machine>::value)
-    return std::visit(std::forward<F>(f), m);
-  else
-    return std::forward<F>(f)(m);
-}
-
 }  // namespace stickslip::detail

@@ -103,7 +103,7 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
       stuck_.push_back(i);
       continue;
     }
-    e.f[i] = detail::with_machine(machines_[iu], [&](const auto& m) {
+    e.f[i] = detail::with_law(machines_[iu], [&](const auto& m) {
       return m.friction_force(mode[i], e.v[i], e.N[i], Scalar(0));
     });
     r_ += e.f[i] * W_.row(i).transpose();
@@ -172,7 +172,7 @@ void ContactSystem<Scalar_, Contact_>::guards(const Mode& mode, Scalar t, const 
   g.resize(num_guards(mode));
   Index k = 0;
   for (Index i = 0; i < D_; ++i) {
-    detail::with_machine(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
+    detail::with_law(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
       m.guards(mode[i], e_.v[i], e_.N[i], e_.f[i], false, g.data() + k);
     });
     k += guards_of(mode, i);
@@ -184,7 +184,7 @@ CrossingDirection ContactSystem<Scalar_, Contact_>::guard_direction(const Mode& 
   for (Index i = 0; i < D_; ++i) {
     const Index gi = guards_of(mode, i);
     if (idx < gi)
-      return detail::with_machine(machines_[static_cast<std::size_t>(i)],
+      return detail::with_law(machines_[static_cast<std::size_t>(i)],
                                   [&](const auto& m) { return m.guard_direction(mode[i], idx, false); });
     idx -= gi;
   }
@@ -203,7 +203,7 @@ bool ContactSystem<Scalar_, Contact_>::resolve(Mode& mode, Scalar t, State& x) {
     Scalar worst_excess = 0;
     for (Index i = 0; i < D_; ++i) {
       if (mode[i] != ContactState::Stick || !has_stick_state(i)) continue;
-      const Scalar excess = detail::with_machine(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
+      const Scalar excess = detail::with_law(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
         using M = std::decay_t<decltype(m)>;
         if constexpr (M::has_stick_state)
           return std::abs(e_.f[i]) - m.stick_capacity(e_.N[i]);
@@ -216,7 +216,7 @@ bool ContactSystem<Scalar_, Contact_>::resolve(Mode& mode, Scalar t, State& x) {
       }
     }
     if (worst < 0) return true;
-    mode[worst] = detail::with_machine(machines_[static_cast<std::size_t>(worst)],
+    mode[worst] = detail::with_law(machines_[static_cast<std::size_t>(worst)],
                                        [&](const auto& m) { return m.decide_at_rest(e_.N[worst], e_.f[worst]); });
   }
   return false;
@@ -268,7 +268,7 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
     // A stick guard: component 4's rule 4 (slip against the required force); a slip state's
     // velocity guard: at rest, tried stuck and decided by resolve() with the whole set.
     if (before[i] == ContactState::Stick)
-      mode[i] = detail::with_machine(machines_[static_cast<std::size_t>(i)],
+      mode[i] = detail::with_law(machines_[static_cast<std::size_t>(i)],
                                      [&](const auto& m) { return m.decide_at_rest(e_.N[i], e_.f[i]); });
     else if (is_slipping(before[i]))
       mode[i] = ContactState::Stick;

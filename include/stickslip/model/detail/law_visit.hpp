@@ -14,7 +14,8 @@ struct is_std_variant : std::false_type {};
 template <class... Ts>
 struct is_std_variant<std::variant<Ts...>> : std::true_type {};
 
-/// Call f(law) with the concrete law (visiting a std::variant of laws).
+/// Call f(law) with the concrete law (visiting a std::variant of laws; the same for a variant of
+/// anything else, e.g. the contact state machines of ContactSystem).
 template <class Law, class F>
 decltype(auto) with_law(const Law& law, F&& f) {
   if constexpr (is_std_variant<Law>::value)
