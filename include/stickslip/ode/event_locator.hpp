@@ -10,7 +10,9 @@
 ///    level is moved just beyond the start value into the triggering direction
 ///    (L = min(g0, 0) - z for Falling, max(g0, 0) + z for Rising), so it neither re-triggers on
 ///    round-off nor stays blind; it is armed (L = 0) once it is more than z on the non-triggering
-///    side. A disarmed guard that fires is an *immediate* event (counted by the Zeno guard).
+///    side (at a step end, or at the point of a step to which the stepper cuts it back when the
+///    guard fires after such an excursion inside the step). A disarmed guard that fires is an
+///    *immediate* event (counted by the Zeno guard).
 ///  - Either: armed with s = sign(g0) when |g0| > z; otherwise it cannot fire (s = 0) until
 ///    |g| > z, then s = sign(g).
 
@@ -92,17 +94,22 @@ class GuardMonitor {
     for (Eigen::Index i = 0; i < g.size(); ++i) {
       if (armed_[i]) continue;
       const auto d = static_cast<CrossingDirection>(dir_[i]);
-      if (d == CrossingDirection::Falling && g[i] > z_) {
-        armed_[i] = 1;
-        level_[i] = Scalar(0);
-      } else if (d == CrossingDirection::Rising && g[i] < -z_) {
-        armed_[i] = 1;
-        level_[i] = Scalar(0);
-      } else if (d == CrossingDirection::Either && std::abs(g[i]) > z_) {
-        armed_[i] = 1;
+      if (!out_of_zero(i, g[i])) continue;
+      armed_[i] = 1;
+      if (d == CrossingDirection::Either)
         sign_[i] = g[i] > 0 ? Scalar(1) : Scalar(-1);
-      }
+      else
+        level_[i] = Scalar(0);
     }
+  }
+
+  /// True when value g of guard i lies more than the zero tolerance on its non-triggering side,
+  /// the condition under which update_arming arms a disarmed guard.
+  bool out_of_zero(Eigen::Index i, Scalar g) const {
+    const auto d = static_cast<CrossingDirection>(dir_[i]);
+    if (d == CrossingDirection::Falling) return g > z_;
+    if (d == CrossingDirection::Rising) return g < -z_;
+    return std::abs(g) > z_;
   }
 
   /// True when guard i was disarmed (started the mode at zero): its event is immediate.

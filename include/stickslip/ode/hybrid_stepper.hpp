@@ -146,6 +146,14 @@ class HybridStepper {
   // event and the core's dense output is that of the step [t, t_event].
   Scalar locate_event(const Mode& m, Scalar t, Scalar h, Scalar t1, StepperStats& st);
 
+  // After locate_event placed an event at te: when a guard that fired was disarmed but lies more
+  // than the zero tolerance on its safe side at a point tc of the dense output inside (t, te), it
+  // left zero and came back within the step, a new crossing rather than an immediate one. The
+  // step is then cut back to tc (re-taken with the method, x1_, f1_, gb_ at tc), so that it ends
+  // where the guard is armed, and true is returned.
+  bool cut_back_to_rearm(const Mode& m, Scalar t, Scalar& h, Scalar& t1, Scalar te,
+                         StepperStats& st);
+
   template <class Observer>
   bool emit_samples(Observer& obs, const Mode& m, Scalar a, Scalar h, Scalar upto,
                     const State& xa, const State& fa, const State& xb, const State& fb);
@@ -325,6 +333,35 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
 }
 
 template <class System, class Method>
+bool HybridStepper<System, Method>::cut_back_to_rearm(const Mode& m, Scalar t, Scalar& h,
+                                                      Scalar& t1, Scalar te, StepperStats& st) {
+  bool disarmed = false;
+  for (Eigen::Index i : triggered_) disarmed = disarmed || monitor_.disarmed(i);
+  if (!disarmed || !(te > t)) return false;
+  // The dense output covering [t, te] (see locate_event); the excursion of a guard that leaves
+  // zero and returns within [t, te] peaks inside it, sampled at its middle and quarter points.
+  const Scalar span = event_on_step_ ? h : te - t;
+  const State& xb = event_on_step_ ? x1_ : xe_;
+  const State& fb = event_on_step_ ? f1_ : fe_;
+  for (const Scalar frac : {Scalar(0.5), Scalar(0.25), Scalar(0.75)}) {
+    const Scalar tc = t + frac * (te - t);
+    if (!(tc > t && tc < te)) continue;
+    core_.dense((tc - t) / span, span, x_, f_, xb, fb, xs_);
+    eval_guards(m, tc, xs_, gt_, st);
+    bool out = true;
+    for (Eigen::Index i : triggered_)
+      out = out && (!monitor_.disarmed(i) || monitor_.out_of_zero(i, gt_[i]));
+    if (!out) continue;
+    h = tc - t;
+    t1 = tc;
+    core_.step(sys_, m, t, x_, f_, h, x1_, f1_, opt_.rtol, opt_.atol, st);
+    eval_guards(m, t1, x1_, gb_, st);
+    return true;
+  }
+  return false;
+}
+
+template <class System, class Method>
 template <class Observer>
 bool HybridStepper<System, Method>::emit_samples(Observer& obs, const Mode& m, Scalar a, Scalar h,
                                                  Scalar upto, const State& xa, const State& fa,
@@ -455,8 +492,19 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       }
     }
 
-    if (guarded_ && monitor_.any_crossed(gb_)) {
-      const Scalar te = locate_event(mode, t, h, t1, st);
+    bool event = guarded_ && monitor_.any_crossed(gb_);
+    Scalar te = t1;
+    if (event) {
+      te = locate_event(mode, t, h, t1, st);
+      if (cut_back_to_rearm(mode, t, h, t1, te, st)) {
+        // (the shorter step ends before the located crossing; a guard crossed at its end after
+        // all, by the re-step's difference from the dense output, is located again in it)
+        cut_back = true;
+        event = monitor_.any_crossed(gb_);
+        if (event) te = locate_event(mode, t, h, t1, st);
+      }
+    }
+    if (event) {
       const bool sampled =
           event_on_step_ ? emit_samples(obs, mode, t, h, te, x_, f_, x1_, f1_)
                          : emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_);
