@@ -1,9 +1,9 @@
-// A separated damper held at a wall in flight (issue #22; docs/model.md "Held at a wall in
-// flight"): a flying damper whose spring pushes it into a MemberEnd::Wall bounces there with
-// falling speeds and is then held (X at the end, V = 0, the wall taking the push along the
-// member) while its normal coordinate keeps flying; it lands on the member at the wall. Before
-// the hold a flying damper kept reflecting at a wall; the blade example at 0.5-1.3 N with
-// --restitution 0.5 --ends wall ended such sequences with a Zeno stop.
+// A separated damper held at a wall in flight (docs/model.md "Held at a wall in flight"): a
+// flying damper whose spring pushes it into a MemberEnd::Wall bounces there with falling speeds
+// and is then held (X at the end, V = 0, the wall taking the push along the member) while its
+// normal coordinate keeps flying; it lands on the member at the wall. Without the hold such
+// sequences (the blade example at 0.5-1.3 N with --restitution 0.5 --ends wall) end with a Zeno
+// stop.
 //
 // References (closed forms, not the model's code): a damper of mass m on the straight
 // cantilever, whose bending mode has psi_u = 0 everywhere and psi_w = 0 at the root, with the
