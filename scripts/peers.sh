@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The peer benchmark of docs/performance.md ("Peer benchmark") in one command: installs Boost and
+# The peer benchmark of docs/measurements/peers.md in one command: installs Boost and
 # SUNDIALS if missing (scripts/deps.sh bench), builds benchmarks/peers in Release and runs it,
 # writing peers.csv, peers.json and peers.md to the output folder.
 #

@@ -1,4 +1,4 @@
-// Micro-benchmarks of the composition layer (docs/performance.md, "Part A"):
+// Micro-benchmarks of the composition layer (docs/measurements/micro_benchmarks.md):
 //  * one right-hand side of FrictionDampedSystem vs the bare modal right-hand side
 //    q'' = -omega^2 q + sum_i (N_i psi_w(X_i) - f_i psi_u(X_i)) with the shapes evaluated at the
 //    D moving contact points, for n = 6, 24, 96 modes and D = 2, 8, 32 dampers (all slipping /

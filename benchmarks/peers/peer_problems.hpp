@@ -139,7 +139,7 @@ struct Event {
 /// R = mu N): amplitude X = sqrt((F0 V)^2 - (R U)^2), V = 1/(1 - omega^2),
 /// U = tan(pi / (2 omega)) / omega, and the forcing phase theta at the instant of the velocity
 /// reversal at x = -X: sin(theta) = R U / (F0 V), cos(theta) = -X / (F0 V)
-/// (J. P. Den Hartog, Trans. ASME 53, 1931, rederived in docs/performance.md "Peer benchmark").
+/// (J. P. Den Hartog, Trans. ASME 53, 1931, rederived in docs/measurements/peers.md).
 struct DenHartogSteadyState {
   double amplitude, theta, V, b;
 

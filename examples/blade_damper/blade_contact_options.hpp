@@ -28,7 +28,7 @@ struct ContactOptions {
 
 /// The demo's contact choices (--demo, unless a contact option is given): the dampers separate
 /// at lift-off and land again (e = 0.5), and both platform ends are walls (e = 0.5) at which a
-/// damper comes to rest, in contact or in flight (docs/model.md "Resting at a wall", "Held at a
+/// damper comes to rest, in contact or in flight (docs/model_separation.md "Resting at a wall", "Held at a
 /// wall in flight"), so that every preload of the demo's sweep runs to its end.
 inline ContactOptions demo_contact_options() {
   ContactOptions c;

@@ -1,4 +1,4 @@
-// A separated damper held at a wall in flight (docs/model.md "Held at a wall in flight"): a
+// A separated damper held at a wall in flight (docs/model_separation.md "Held at a wall in flight"): a
 // flying damper whose spring pushes it into a MemberEnd::Wall bounces there with falling speeds
 // and is then held (X at the end, V = 0, the wall taking the push along the member) while its
 // normal coordinate keeps flying; it lands on the member at the wall. Without the hold such

@@ -279,7 +279,7 @@ double stiff_root(double two_sigma, double w) {
 }
 
 // beta = the largest |psi_u|^2 along the platform (at its nodes: psi_u is linear on each element),
-// from component 3 (MemberShapes) directly, as docs/model.md "Step rates" states the bound.
+// from component 3 (MemberShapes) directly, as docs/howto/pick_an_integrator.md "Step rates" states the bound.
 double largest_psi_u_squared(const TScene& s) {
   const MemberShapes<double> shapes(s.frame, s.platform, s.basis);
   double beta = 0;

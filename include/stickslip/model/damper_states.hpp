@@ -14,7 +14,7 @@
 
 namespace stickslip {
 
-/// The member end a damper rests against (docs/model.md, "Resting at a wall"): a damper in
+/// The member end a damper rests against (docs/model_separation.md, "Resting at a wall"): a damper in
 /// ContactState::Stick at a MemberEnd::Wall whose wall takes the tangential force into it, or a
 /// separated one held there along the member while it flies ("Held at a wall in flight").
 enum class WallRest : std::uint8_t {

@@ -82,16 +82,16 @@ inline int slip_sign(ContactState s) noexcept {
 /// Separated (PointDamper::separation = Separate, after N_i reached 0): N_i = f_i = 0,
 ///   m_i y_d'' = N0_i (the preload pushes the damper back towards the member), guard
 ///   gap = y_i - y_d >= 0; at gap = 0 an impact (frictional_impact through the member's
-///   impulse response) bounces or lands it (docs/model.md, "Separation").
+///   impulse response) bounces or lands it (docs/model_separation.md, "Separation").
 /// All unknowns (q'', N, f, x'') are solved together: known forces (constant N, f = -mu N of a
 /// slipping damper) are eliminated, and the U <= 2D remaining ones solved in the cheaper of the
 /// capacitance (Woodbury) form, a U x U system, and the mode-space form of the
 /// identity-plus-low-rank matrix of eqs 26-29; the factorisation is kept over a stick phase
-/// (docs/model.md, "acceleration solve").
+/// (docs/model_solve.md, "acceleration solve").
 ///
 /// `Modes` fixes the number of retained modes at compile time (default Eigen::Dynamic: any
 /// number, given by the basis): the hot loops of the solve then work on fixed-size views, which
-/// for a few modes costs less than the loop and call overhead of dynamic sizes (docs/model.md).
+/// for a few modes costs less than the loop and call overhead of dynamic sizes (docs/model_solve.md).
 /// The state, outputs and interface are the same for either choice.
 template <class Scalar_, class Law_ = FrictionLawVariant<Scalar_>, int Modes = Eigen::Dynamic>
 class FrictionDampedSystem {
@@ -135,7 +135,7 @@ class FrictionDampedSystem {
     ContactState to;
   };
 
-  /// One impact of a separated damper on its member (docs/model.md, "Separation"), or of a moving
+  /// One impact of a separated damper on its member (docs/model_separation.md, "Separation"), or of a moving
   /// contact on a wall at a member end ("Member ends"), logged by `transition`: the impulses and
   /// relative velocities.
   struct ImpactEvent {
@@ -181,7 +181,7 @@ class FrictionDampedSystem {
     /// Gap y_member - y_d of a separated damper (>= 0 in flight, its guard), 0 in contact.
     Vector gap;
     /// Reaction of the wall on a damper resting against it along u [N] (DamperStates::wall;
-    /// docs/model.md "Resting at a wall"), 0 otherwise: the contact's tangential force is
+    /// docs/model_separation.md "Resting at a wall"), 0 otherwise: the contact's tangential force is
     /// f + wall_force, f the friction share (at most mu_s N towards the wall).
     Vector wall_force;
     /// False when a force or acceleration is not finite (an overflowing state): rhs()
@@ -189,7 +189,7 @@ class FrictionDampedSystem {
     bool finite = true;
   };
 
-  /// How the last acceleration solve was done (docs/model.md, "acceleration solve"): for cost
+  /// How the last acceleration solve was done (docs/model_solve.md, "acceleration solve"): for cost
   /// studies, and for tests that must reach every form.
   struct SolveInfo {
     Index unknowns = 0;       ///< U, the forces solved for (0: every force known)
@@ -200,7 +200,7 @@ class FrictionDampedSystem {
     /// matrix (0: none; the solve was direct, ModelOptions::refine_stale_factorisation).
     int refinements = 0;
     /// A system of order 4, 6 or 8 was solved with the pivoted LU: its block elimination failed
-    /// the backward-error check (docs/model.md, "acceleration solve"; rare, for matrices whose
+    /// the backward-error check (docs/model_solve.md, "acceleration solve"; rare, for matrices whose
     /// leading block is nearly singular).
     bool pivoted = false;
   };
@@ -279,7 +279,7 @@ class FrictionDampedSystem {
   /// Squared natural frequencies omega_j^2 of the retained modes [rad^2/s^2] (eq 25).
   const Vector& omega_squared() const noexcept { return omega2_; }
   /// The rates an explicit fixed step must resolve, each with what it belongs to (StepRate;
-  /// upper half-plane of each conjugate pair; docs/model.md "Step rates"):
+  /// upper half-plane of each conjugate pair; docs/howto/pick_an_integrator.md "Step rates"):
   ///  * every retained mode of eq 25, lambda = omega (-zeta + i sqrt(1 - zeta^2)) with
   ///    zeta = c / (2 omega) (two real rates omega (-zeta +- sqrt(zeta^2 - 1)) when zeta >= 1;
   ///    -c for a damped rigid-body mode): "mode j (f Hz)", j from 1;
@@ -437,7 +437,7 @@ class FrictionDampedSystem {
 
   /// Event handling: lift-off (Separation::Stop) and a contact leaving its member (MemberEnd::Stop)
   /// stop the run with a reason; a separable damper's lift-off, a gap closing (impact) and a wall
-  /// are handled as in docs/model.md ("Separation", "Member ends");
+  /// are handled as in docs/model_separation.md ("Separation", "Member ends");
   /// stick/slip guards pick a consistent set of new contact states for all dampers (see
   /// docs/model.md) and reset a new stick's sliding velocity to exactly zero.
   TransitionAction transition(Mode& mode, const TriggeredGuards& triggered, Scalar t, State& x);
@@ -522,7 +522,7 @@ class FrictionDampedSystem {
     return b;
   }
 
-  // ---- linear part per discrete mode (docs/model.md, "Linear part per discrete mode")
+  // ---- linear part per discrete mode (docs/model_solve.md, "Linear part per discrete mode")
   /// Number of linear components of linear_part(): the state without the energy-audit integrals,
   /// which are quadratures (their rates depend on t and the other components only).
   Index linear_size() const noexcept { return state_size() - audit_size(); }
@@ -551,7 +551,7 @@ class FrictionDampedSystem {
   /// CoulombLaw, no time_function load) J_LL = A_m of linear_part, the audit rows are
   /// d(z^T Q_j z)/dx_L = ((Q_j + Q_j^T) z)_L. Where a contact slides along its member under a
   /// CoulombLaw (no damper in flight or at a wall), every column but X is the tangent of the
-  /// solve, (A + L^T F) du = rho - L^T dr0, dq'' = dr0 + F du (docs/model.md, "Jacobian df/dx").
+  /// solve, (A + L^T F) du = rho - L^T dr0, dq'' = dr0 + F du (docs/model_solve.md, "Jacobian df/dx").
   /// In both cases the contact-coordinate columns X (frozen in A_m) are the same solve's
   /// derivative in X (the shapes' derivatives up to psi_w''' at X), unless a damper is in flight
   /// or at a wall: then central differences of rhs. Elsewhere every column is a central difference,
@@ -627,7 +627,7 @@ class FrictionDampedSystem {
   }
 
   /// The flight rows of the derivative: y_d' and y_d'' = N0 / m of a separated damper (its
-  /// preload pushes it towards the member, docs/model.md "Separation"); 0 for a damper in
+  /// preload pushes it towards the member, docs/model_separation.md "Separation"); 0 for a damper in
   /// contact (its flight coordinates wait, unused, until a lift-off sets them). Uses flying_ of
   /// the evaluation's solve.
   template <class Out>
@@ -876,7 +876,7 @@ class FrictionDampedSystem {
     });
   }
 
-  /// The coupled solve for (q'', N, f, x'') in mode `mode` (docs/model.md, "acceleration solve").
+  /// The coupled solve for (q'', N, f, x'') in mode `mode` (docs/model_solve.md, "acceleration solve").
   /// Known forces (constant N, f = -mu N of a slipping damper) are eliminated first; the U <= 2D
   /// remaining unknowns u satisfy  A u + L^T q'' = c  with  q'' = r0 + F u  (A diagonal, F and L
   /// n x U). Solved in the smaller of two equivalent forms: the capacitance (Woodbury) system
@@ -894,14 +894,14 @@ class FrictionDampedSystem {
   }
 
   /// r0_ = -omega^2 q - c q' with the basis' modal damping coefficients c (2 zeta omega, or
-  /// alpha + beta omega^2 for Rayleigh damping; r0 of docs/model.md without the loads).
+  /// alpha + beta omega^2 for Rayleigh damping; r0 of docs/model_solve.md without the loads).
   void structural_r0(const State& x) const {
     const auto q = x.template segment<Modes>(0, n_);
     const auto qd = x.template segment<Modes>(n_, n_);
     modal(r0_).noalias() = -modal(omega2_).cwiseProduct(q) - modal(modal_damping_).cwiseProduct(qd);
   }
 
-  /// The solve after r0_ = r0 (docs/model.md) is formed. Frozen (linear_part): every damper's
+  /// The solve after r0_ = r0 (docs/model_solve.md) is formed. Frozen (linear_part): every damper's
   /// rows as at a fixed contact at the state's X (a slipping damper's too: no convective terms,
   /// no slope coupling) with the slip coefficient lp_mu_ instead of the law's.
   template <bool Frozen>
@@ -1033,7 +1033,7 @@ class FrictionDampedSystem {
   }
 
   /// One slipping damper with a moving contact (its X changes at every call): its slip row
-  /// (docs/model.md, with the convective terms), from the element's n x 6 nodal block B and the shape-function weights
+  /// (docs/model_solve.md, with the convective terms), from the element's n x 6 nodal block B and the shape-function weights
   /// at X (MemberShapes::locate). Every shape vector is B times a 6-vector of weights, so the
   /// projections need only P = B^T [q q'] (one n x 6 x 2 product) and the two columns of the solve
   /// are F_j = B (c_a + mu c_b), L_j = B (m c_a - m s c_b) (slip_columns): 21 n multiplies and no
@@ -1508,7 +1508,7 @@ class FrictionDampedSystem {
     return TransitionAction::halt("stopped" + at);
   }
 
-  // ---- separation (docs/model.md "Separation"; defined below the class) ----------------------
+  // ---- separation (docs/model_separation.md "Separation"; defined below the class) ----------------------
   /// The member's normal displacement y = a^T q and velocity y' = a^T q' + slope V (slope with a
   /// moving contact) under damper i, its slope and sliding velocity V; leaves i's shapes in C_.
   struct MemberContact {
@@ -1540,12 +1540,12 @@ class FrictionDampedSystem {
   Scalar flight_gap_acceleration(const Mode& mode, Index i, Scalar t, const State& x);
   /// Whether the rebound of separated damper i at gap rate v_after > 0 (state x just after the
   /// bounce) stays inside the landing band: g'' < 0 and v_after^2 <= 2 |g''| kLandingBand L, i.e.
-  /// the flight's apex below kLandingBand L (docs/model.md "Separation", "The landing band").
+  /// the flight's apex below kLandingBand L (docs/model_separation.md "Separation", "The landing band").
   bool rebound_within_band(const Mode& mode, Index i, Scalar t, const State& x, Scalar v_after);
   /// Height of the landing band relative to the member length (1e-8 L: 4e-10 m on a 4 cm
   /// platform): a bounce whose flight would not rise above it lands. Well above the stepper's
   /// default guard_zero_tolerance (1e-12), by which a gap guard restarted at zero sinks at each
-  /// located impact (docs/model.md "Separation").
+  /// located impact (docs/model_separation.md "Separation").
   static constexpr double kLandingBand = 1e-8;
   /// response_ = the member's modal velocity jumps, response_x_ the dampers' x' jumps, for unit
   /// modal impulses impulse_dir_ (two columns), through the other dampers' contact rows.
@@ -1576,7 +1576,7 @@ class FrictionDampedSystem {
     return -1;
   }
 
-  // ---- resting at a wall (docs/model.md "Resting at a wall"; defined below the class) --------
+  // ---- resting at a wall (docs/model_separation.md "Resting at a wall"; defined below the class) --------
   /// A stuck damper resting at a wall: the tangential force f solved for splits into friction
   /// (up to mu_s N towards the wall) and the wall's reaction (the excess, into eval_.wall_force).
   void split_wall_reaction(const Mode& mode) const;
@@ -1584,7 +1584,7 @@ class FrictionDampedSystem {
   /// finish: mu_s N + f) is replaced by N, positive in contact (affine in the state like the
   /// others; it falls to 0 with the lift-off guard).
   static void rest_guard(WallRest wall, Scalar N, Scalar* g) noexcept { g[wall == WallRest::Start ? 0 : 1] = N; }
-  /// A separated damper held at a wall (docs/model.md "Held at a wall in flight"): the guard of
+  /// A separated damper held at a wall (docs/model_separation.md "Held at a wall in flight"): the guard of
   /// its wall end (end_g[0]: X, end_g[1]: L - X) becomes the wall's reaction, which can only push:
   /// F at the start wall, -F at the finish wall (F = f + wall_force, the force along u holding it).
   static void hold_guard(WallRest wall, Scalar F, Scalar* end_g) noexcept {
@@ -1716,7 +1716,7 @@ class FrictionDampedSystem {
   Eigen::Matrix<Scalar, 1, Eigen::Dynamic> jac_gV_, jac_gs_, jac_gh_, jac_gd_, jac_gc_;
   typename Shapes::Values jac_shape_;
   std::vector<Eigen::PartialPivLU<Matrix>> jac_lu_;
-  /// The columns of the moving contacts' X in closed form (docs/model.md, "Jacobian df/dx"),
+  /// The columns of the moving contacts' X in closed form (docs/model_solve.md, "Jacobian df/dx"),
   /// where the tangent applies (no damper in flight or at a wall, Coulomb slip); false, J
   /// untouched, elsewhere. `lu_ready`: tangent_jacobian has just factorised A + L^T F at x.
   bool contact_columns(const Mode& mode, Scalar t, const State& x, Matrix& J, bool lu_ready);
@@ -1756,7 +1756,7 @@ class FrictionDampedSystem {
   std::vector<ContactEvent> events_;
   std::vector<ImpactEvent> impacts_;
   std::vector<Index> involved_, lifting_, impacting_;
-  // Separation (docs/model.md "Separation"): per damper its flight slot (-1: cannot separate),
+  // Separation (docs/model_separation.md "Separation"): per damper its flight slot (-1: cannot separate),
   // the number S of such dampers, which dampers the last solve had in flight, and the impulse
   // response workspace of impact() (member velocity and damper velocity jumps per unit impulse).
   std::vector<Index> flight_slot_;
@@ -2076,7 +2076,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::mechanical_energy(const Mode& m
     const Scalar m = d.effective_mass(), k = d.effective_stiffness();
     const Scalar xi = x[x_offset() + i], xdi = x[xd_offset() + i];
     if (moving_[static_cast<std::size_t>(i)]) evaluate_shapes(i, e.X[i]);  // a slipping damper's are not kept
-    if (mode[i] == ContactState::Separated) {  // in flight: its own y_d, y_d' (docs/model.md "Separation")
+    if (mode[i] == ContactState::Separated) {  // in flight: its own y_d, y_d' (docs/model_separation.md "Separation")
       const Index y = flight_offset() + flight_slot_[static_cast<std::size_t>(i)];
       const Scalar yd = x[y + num_separable_];
       E += Scalar(0.5) * m * (xdi * xdi + yd * yd) + Scalar(0.5) * k * xi * xi - d.preload * x[y];
@@ -2524,7 +2524,7 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::frozen_guard_rows(const Mode& m
   }
 }
 
-// ---- separation: lift-off into flight, impacts, landings (docs/model.md "Separation") --------
+// ---- separation: lift-off into flight, impacts, landings (docs/model_separation.md "Separation") --------
 
 template <class Scalar_, class Law_, int Modes>
 auto FrictionDampedSystem<Scalar_, Law_, Modes>::member_contact(Index i, const State& x) const -> MemberContact {
@@ -2629,7 +2629,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::impact(Mode& mode, Index i, Sca
   if (!hit.resolved) return false;
   apply(hit.impulse);
   if (!hit.lands && rebound_within_band(mode, i, t, x, hit.velocity_after[0])) {
-    // A rebound too low to leave the landing band is a landing (docs/model.md "Separation"):
+    // A rebound too low to leave the landing band is a landing (docs/model_separation.md "Separation"):
     // the plastic impact (e = 0) in its place, i.e. the difference of the two impulses added.
     const FrictionalImpact<Scalar> landing = solve_impact(NewtonImpact<Scalar>(Scalar(0), d.landing_speed));
     if (!landing.resolved) return false;
@@ -2733,12 +2733,12 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::wall_impact(Mode& mode, Index i
   inertial_[iu] = 0;  // (no preload in the probe: no rows of its own)
   impulse_response(mode, x);
   inertial_[iu] = inertial;
-  // Resting contact (docs/model.md "Resting at a wall"): a damper in contact with a stick state
+  // Resting contact (docs/model_separation.md "Resting at a wall"): a damper in contact with a stick state
   // that arrives at or below its landing speed, or at a plastic wall, stops against it.
   using std::abs;
   const bool rests = has_stick_[iu] && mode[i] != ContactState::Separated &&
                      (d.wall_restitution == Scalar(0) || abs(V) <= d.landing_speed);
-  // Held in flight (docs/model.md "Held at a wall in flight"): a separated damper that arrives at
+  // Held in flight (docs/model_separation.md "Held at a wall in flight"): a separated damper that arrives at
   // or below its landing speed, at a plastic wall, or whose rebound would turn within the wall
   // band (V^2 e^2 <= 2 |V'| kWallBand L with V' pushing it into the wall: no velocity guard in
   // flight would see that turning point) stays at the wall.
@@ -2814,7 +2814,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::land_or_separate(Mode& mode, co
   return true;
 }
 
-// ---- resting at a wall (docs/model.md "Resting at a wall") -----------------------------------
+// ---- resting at a wall (docs/model_separation.md "Resting at a wall") -----------------------------------
 
 template <class Scalar_, class Law_, int Modes>
 void FrictionDampedSystem<Scalar_, Law_, Modes>::split_wall_reaction(const Mode& mode) const {

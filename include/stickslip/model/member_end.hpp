@@ -6,7 +6,7 @@
 
 namespace stickslip {
 
-/// Treatment of one end of the member under a moving contact (docs/model.md, "Member ends").
+/// Treatment of one end of the member under a moving contact (docs/model_separation.md, "Member ends").
 enum class MemberEnd : std::uint8_t {
   /// As ModelOptions::end_policy says: Throw -> Stop, Clamp/Extrapolate -> Extend (default).
   Default,

@@ -57,7 +57,7 @@ struct PointDamper {
   /// ModelOptions::moving_contact = false overrides it for every damper.
   ContactPoint contact_point = ContactPoint::Moving;
   /// What happens when this damper's normal force reaches zero: Stop the run (default) or
-  /// Separate (free flight, then an impact; docs/model.md "Separation"). Separate needs an
+  /// Separate (free flight, then an impact; docs/model_separation.md "Separation"). Separate needs an
   /// inertial normal load and ModelOptions::watch_lift_off (else N never reaches zero).
   Separation separation = Separation::Stop;
   /// Newton's coefficient of restitution e in [0, 1] of this damper's impacts (Separate only).
@@ -65,9 +65,9 @@ struct PointDamper {
   /// Impacts approaching at or below this relative normal speed land (persistent contact, the
   /// rule that ends a Zeno sequence of bounces; NewtonImpact) [m/s], >= 0 (Separate); a
   /// contact arriving at a MemberEnd::Wall at or below it comes to rest against the wall
-  /// (docs/model.md "Resting at a wall").
+  /// (docs/model_separation.md "Resting at a wall").
   Scalar landing_speed = Scalar(1e-4);
-  /// What the moving contact does at X = 0 of the member (docs/model.md, "Member ends").
+  /// What the moving contact does at X = 0 of the member (docs/model_separation.md, "Member ends").
   MemberEnd start_end = MemberEnd::Default;
   /// What the moving contact does at X = L of the member.
   MemberEnd finish_end = MemberEnd::Default;

@@ -6,7 +6,7 @@
 
 namespace stickslip {
 
-/// What happens when a damper's normal force N reaches zero (docs/model.md, "Separation").
+/// What happens when a damper's normal force N reaches zero (docs/model_separation.md, "Separation").
 enum class Separation : std::uint8_t {
   /// Stop the run with StopReason::LiftOff (the paper's permanent-contact assumption; default).
   Stop,

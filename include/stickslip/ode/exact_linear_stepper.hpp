@@ -5,7 +5,7 @@
 /// Runge-Kutta method in the frame of the linear part where it is not. No stability limit from
 /// the linear part; guards are sampled at a fixed fraction of the shortest period of the mode,
 /// with a Hermite (value + slope) test for grazing between samples, and events are located on
-/// the exact (or exponential) solution. See docs/ode.md, "Exact and exponential integration".
+/// the exact (or exponential) solution. See docs/ode_exponential.md, "Exact and exponential integration".
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/detail/augmented_flow.hpp>
@@ -50,7 +50,7 @@ namespace stickslip {
 /// of StepperOptions (rtol, atol, safety, min_step, max_step, initial_step), steps capped at
 /// delta in modes with guards - or, where the mode gives frozen affine guards, at 2^j delta
 /// (j <= slip_levels) when a bound on the frozen linear part's guard motion shows no guard can
-/// reach its trigger, checked after the step with the remainder's share (docs/ode.md, "Long
+/// reach its trigger, checked after the step with the remainder's share (docs/ode_exponential.md, "Long
 /// slipping steps"); the linear part is kept frozen while the remainder does not limit
 /// the step (refresh_error; the system's `version` tells whether A_m changed at a refresh), and
 /// steps of one length reuse their stage propagators. Samples and event location inside a Lawson
@@ -156,10 +156,10 @@ class ExactLinearStepper {
     blocks_.clear();
   }
 
-  /// Long Lawson steps in inexact modes that give frozen affine guards (docs/ode.md, "Long
+  /// Long Lawson steps in inexact modes that give frozen affine guards (docs/ode_exponential.md, "Long
   /// slipping steps"): off by default - on the blade model they cost more (bounds and stage
   /// propagators per frozen Â) than the few steps they save, the remainder's error limiting the
-  /// steps to about delta anyway (docs/performance.md).
+  /// steps to about delta anyway (docs/measurements/exponential.md).
   void set_long_slipping_steps(bool on) noexcept { long_slip_ = on; }
 
   /// The options of the stepper (validated at construction).
