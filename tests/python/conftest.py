@@ -1,8 +1,7 @@
 """pytest setup: the example's blade scene (examples/python/blade_scene.py) on sys.path, and the
-module `stickslip` from where the test command put it: the build tree (CTest python.pytest sets
-PYTHONPATH=<build>/python) or, with STICKSLIP_TEST_INSTALLED=1 (CTest python.install), the
-installed package, which must then come from the running environment's site-packages and not
-from a build tree."""
+module `stickslip` from where it was put: the build tree (PYTHONPATH=<build>/python) or, with
+STICKSLIP_TEST_INSTALLED=1 (CTest python.install), the installed package, which must then come
+from the running environment's site-packages and not from a build tree."""
 import os
 import sys
 import sysconfig
