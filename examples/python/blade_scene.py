@@ -111,11 +111,11 @@ def run(scene: BladeScene, duration, options=None, record_window=1.0, record_sta
         E = float(np.trapz(tip[inside] ** 2, t[inside]) / (t2 - t1))
     last = t >= window_start - 1e-12
     stuck = (r.sample_modes[last] == int(ss.ContactState.Stick)).mean(axis=0) if last.any() \
-        else np.full(scene.system.num_dampers, np.nan)
+        else np.full(scene.system.num_dampers(), np.nan)
     regimes = [regime(s) for s in stuck]
     overall = regimes[0] if len(set(regimes)) == 1 else " / ".join(regimes)
     if not r.ok:
-        why = scene.system.stop_reason
+        why = scene.system.stop_reason()
         overall = {ss.StopReason.LiftOff: "lift-off", ss.StopReason.LeftMember: "left platform"}.get(why, "run stopped")
     summary = {"energy_density": E, "tip_max": float(np.abs(tip[last]).max()) if last.any() else float("nan"),
                "stick_fraction": [float(s) for s in stuck], "regime": overall}

@@ -6,6 +6,7 @@
 
 #include <stickslip/stickslip.hpp>
 
+#include <pybind11/complex.h>
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>
@@ -321,6 +322,9 @@ RunOptions<double> make_run_options(const std::string& integrator, const py::kwa
     else if (key == "zeno_max_events") s.zeno_max_events = count();
     else if (key == "zeno_window") s.zeno_window = real();
     else if (key == "output_interval") s.output_interval = real();
+    else if (key == "event_state") s.event_state = as(EventState{}, "an EventState");
+    else if (key == "zeno_max_immediate_events") s.zeno_max_immediate_events = count();
+    else if (key == "max_samples") s.max_samples = count();
     else if (key == "check_stability_limit") o.check_stability_limit = as(false, "a bool");
     else throw std::invalid_argument("RunOptions: unknown option " + key);
   }
@@ -343,120 +347,234 @@ std::function<double(const System&, double, const State&)> trade_output(const py
 }
 
 void bind_frame(py::module_& m) {
-  py::class_<SectionProperties<double>>(m, "SectionProperties", "Beam section: E [Pa], rho [kg/m^3], A [m^2], I [m^4].")
-      .def(py::init([](double E, double rho, double A, double I) { return SectionProperties<double>{E, rho, A, I}; }),
-           py::arg("E"), py::arg("rho"), py::arg("A"), py::arg("I"))
-      .def_readwrite("E", &SectionProperties<double>::E)
-      .def_readwrite("rho", &SectionProperties<double>::rho)
-      .def_readwrite("A", &SectionProperties<double>::A)
-      .def_readwrite("I", &SectionProperties<double>::I);
-  py::enum_<Dof>(m, "Dof").value("X", Dof::X).value("Y", Dof::Y).value("Rz", Dof::Rz);
-  py::enum_<MassType>(m, "MassType").value("Consistent", MassType::Consistent).value("Lumped", MassType::Lumped);
+  using Section = SectionProperties<double>;
+  py::class_<Section>(m, "SectionProperties",
+                      "Material and section of a beam element: Young's modulus E [Pa], density rho [kg/m^3], "
+                      "area A [m^2], second moment of area I [m^4] (docs/beam.md).")
+      .def(py::init([](double E, double rho, double A, double I) { return Section{E, rho, A, I}; }), py::arg("E"),
+           py::arg("rho"), py::arg("A"), py::arg("I"), "A section of Young's modulus E [Pa], density rho [kg/m^3], "
+           "area A [m^2] and second moment of area I [m^4].")
+      .def_readwrite("E", &Section::E, "Young's modulus [Pa]")
+      .def_readwrite("rho", &Section::rho, "density [kg/m^3]")
+      .def_readwrite("A", &Section::A, "cross-section area [m^2]")
+      .def_readwrite("I", &Section::I, "second moment of area about the bending axis [m^4]");
+  py::enum_<Dof>(m, "Dof", "A nodal degree of freedom of a plane frame.")
+      .value("X", Dof::X, "displacement along global X [m]")
+      .value("Y", Dof::Y, "displacement along global Y [m]")
+      .value("Rz", Dof::Rz, "rotation about Z [rad]");
+  py::enum_<MassType>(m, "MassType", "The element mass matrix of the assembly.")
+      .value("Consistent", MassType::Consistent, "consistent mass matrix (the default)")
+      .value("Lumped", MassType::Lumped, "lumped (diagonal) mass matrix");
   using Frame = FrameModel<double>;
   py::class_<Frame>(m, "FrameModel", "A plane frame of Euler-Bernoulli members (docs/beam.md).")
-      .def(py::init<>())
+      .def(py::init<>(), "An empty frame.")
       .def("add_node", &Frame::add_node, py::arg("x"), py::arg("y"), "Adds a node at (x, y) [m]; returns its id.")
       .def("add_member", py::overload_cast<NodeId, NodeId, const Frame::Section&, Index>(&Frame::add_member),
            py::arg("node_a"), py::arg("node_b"), py::arg("section"), py::arg("elements"),
-           "Adds a member of `elements` equal elements; returns its id.")
+           "Adds a member from node_a to node_b meshed into `elements` equal elements; returns its id.")
       .def("add_member",
            py::overload_cast<NodeId, NodeId, const Frame::Section&, std::vector<double>>(&Frame::add_member),
-           py::arg("node_a"), py::arg("node_b"), py::arg("section"), py::arg("stations"))
-      .def("clamp", &Frame::clamp, py::arg("node"))
-      .def("pin", &Frame::pin, py::arg("node"))
-      .def("fix", &Frame::fix, py::arg("node"), py::arg("dof"))
-      .def("add_point_mass", &Frame::add_point_mass, py::arg("node"), py::arg("m"))
-      .def("add_rotary_inertia", &Frame::add_rotary_inertia, py::arg("node"), py::arg("J"))
-      .def("add_spring", &Frame::add_spring, py::arg("node"), py::arg("dof"), py::arg("k"))
+           py::arg("node_a"), py::arg("node_b"), py::arg("section"), py::arg("stations"),
+           "Adds a member from node_a to node_b meshed at the ascending local coordinates `stations` [m] "
+           "(0 ... its length); returns its id.")
+      .def("clamp", &Frame::clamp, py::arg("node"), "Fixes the node's X, Y and Rz.")
+      .def("pin", &Frame::pin, py::arg("node"), "Fixes the node's X and Y (free rotation).")
+      .def("fix", &Frame::fix, py::arg("node"), py::arg("dof"), "Fixes one DOF (Dof) of the node.")
+      .def("add_point_mass", &Frame::add_point_mass, py::arg("node"), py::arg("m"),
+           "Adds a point mass m [kg] at the node (to its X and Y).")
+      .def("add_rotary_inertia", &Frame::add_rotary_inertia, py::arg("node"), py::arg("J"),
+           "Adds a rotary inertia J [kg m^2] at the node.")
+      .def("add_spring", &Frame::add_spring, py::arg("node"), py::arg("dof"), py::arg("k"),
+           "Adds a grounded spring k [N/m, or N m/rad for Rz] on one DOF of the node.")
+      .def("num_members", &Frame::num_members, "Number of members added.")
+      .def("num_nodes", &Frame::num_nodes, "Number of nodes: the user's and the interior nodes of the member meshes.")
+      .def("num_elements", &Frame::num_elements, "Total number of elements over all members.")
+      .def("is_constrained", &Frame::is_constrained, py::arg("node"), py::arg("dof"),
+           "True when the nodal DOF is constrained.")
       .def("member_nodes", [](const Frame& f, MemberId id) { return f.member(id).nodes; }, py::arg("member"),
-           "Node ids along the member, a ... b.")
-      .def("member_length", [](const Frame& f, MemberId id) { return f.member(id).length; }, py::arg("member"))
-      .def("node_position", [](const Frame& f, NodeId n) { return f.node_position(n); }, py::arg("node"));
+           "Node ids along the member, a ... b (C++: member(id).nodes).")
+      .def("member_stations", [](const Frame& f, MemberId id) { return f.member(id).stations; }, py::arg("member"),
+           "Local coordinates [m] of the member's nodes, 0 ... length (C++: member(id).stations).")
+      .def("member_length", [](const Frame& f, MemberId id) { return f.member(id).length; }, py::arg("member"),
+           "The member's length [m] (C++: member(id).length).")
+      .def("node_position", [](const Frame& f, NodeId n) { return f.node_position(n); }, py::arg("node"),
+           "Position (X, Y) [m] of a node (numpy).");
 
-  py::class_<ModalBasis<double>>(m, "ModalBasis", "Mass-normalised modes of a frame (docs/modal.md).")
-      .def_property_readonly("omega", &ModalBasis<double>::omega, "natural frequencies [rad/s], ascending")
-      .def_property_readonly("frequencies_hz", &ModalBasis<double>::frequencies_hz)
-      .def_property_readonly("phi", &ModalBasis<double>::phi)
-      .def_property_readonly("damping_ratios", &ModalBasis<double>::damping_ratios)
-      .def("__len__", [](const ModalBasis<double>& b) { return b.size(); })
-      .def("truncated", &ModalBasis<double>::truncated, py::arg("n"))
-      .def("with_modal_damping", &ModalBasis<double>::with_modal_damping, py::arg("ratios"))
-      .def("with_rayleigh_damping", &ModalBasis<double>::with_rayleigh_damping, py::arg("alpha"), py::arg("beta"));
+  using Basis = ModalBasis<double>;
+  py::class_<Basis>(m, "ModalBasis",
+                    "The n lowest mass-normalised modes of a frame: omega ascending [rad/s], Phi (num_free x n) "
+                    "with Phi^T M Phi = I; each modal coordinate obeys q_i'' + c_i q_i' + omega_i^2 q_i = phi_i^T f "
+                    "(docs/modal.md).")
+      .def("omega", &Basis::omega, "Natural circular frequencies [rad/s], ascending (numpy).")
+      .def("frequencies_hz", &Basis::frequencies_hz, "Natural frequencies omega / (2 pi) [Hz] (numpy).")
+      .def("phi", &Basis::phi, "The modes Phi, num_free x size() (numpy), Phi^T M Phi = I.")
+      .def("size", &Basis::size, "Number of modes n.")
+      .def("num_free", &Basis::num_free, "Number of free DOFs (rows of Phi).")
+      .def("num_rigid_body_modes", &Basis::num_rigid_body_modes, "Number of leading rigid-body (zero-frequency) modes.")
+      .def("damping_ratios", &Basis::damping_ratios, "Modal damping ratios zeta_i (numpy; 0 until set).")
+      .def("damping_coefficients", &Basis::damping_coefficients,
+           "Modal damping coefficients c_i [1/s] of q_i'' + c_i q_i' + omega_i^2 q_i = ... (numpy): 2 zeta_i omega_i, "
+           "or alpha + beta omega_i^2 after with_rayleigh_damping.")
+      .def("nodal", [](const Basis& b, NodeId node, Dof dof) { return Eigen::RowVectorXd(b.nodal(node, dof)); },
+           py::arg("node"), py::arg("dof"),
+           "Row of Phi for a nodal DOF: its value in each mode (numpy, zeros when constrained); the DOF's "
+           "displacement is nodal(node, dof) @ q.")
+      .def("expand", [](const Basis& b, const Eigen::VectorXd& q) { return b.expand(q); }, py::arg("q"),
+           "Free-DOF displacements x = Phi q (numpy) of the modal coordinates q (size() entries).")
+      .def("nodal_displacements", [](const Basis& b, const Eigen::VectorXd& q) { return b.nodal_displacements(q); },
+           py::arg("q"),
+           "Displacements of all 3 num_nodes nodal DOFs (constrained ones 0), ordered 3 node + dof (numpy), "
+           "of the modal coordinates q.")
+      .def("__len__", [](const Basis& b) { return b.size(); }, "Number of modes n.")
+      .def("truncated", &Basis::truncated, py::arg("n"), "The n lowest modes (with their damping), 1 <= n <= size().")
+      .def("with_modal_damping", &Basis::with_modal_damping, py::arg("ratios"),
+           "A copy with modal damping ratios zeta_i (size() entries, >= 0): c_i = 2 zeta_i omega_i.")
+      .def("with_rayleigh_damping", &Basis::with_rayleigh_damping, py::arg("alpha"), py::arg("beta"),
+           "A copy with Rayleigh damping C = alpha M + beta K: c_i = alpha + beta omega_i^2 (alpha [1/s], beta [s], "
+           ">= 0).");
   m.def(
       "compute_modes",
-      [](const Frame& frame, Index num_modes, double max_omega, MassType mass) {
+      [](const Frame& frame, std::optional<Index> num_modes, double max_omega, MassType mass) {
+        const AssembledFrame<double> assembled = frame.assemble(mass);
         ModalOptions<double> o;
-        o.num_modes = num_modes;
+        o.num_modes = num_modes ? *num_modes : assembled.num_free();
         o.max_omega = max_omega;
-        return compute_modes(frame.assemble(mass), o);
+        return compute_modes(assembled, o);
       },
       py::arg("frame"), py::arg("num_modes") = 10, py::arg("max_omega") = std::numeric_limits<double>::infinity(),
-      py::arg("mass") = MassType::Consistent, "The lowest num_modes modes of the assembled frame.");
+      py::arg("mass") = MassType::Consistent,
+      "The lowest num_modes modes (default 10; None: all, one per free DOF) of the frame assembled with `mass`, "
+      "dropping those above max_omega [rad/s] (C++: compute_modes(frame.assemble(mass), ModalOptions)).");
 }
 
 void bind_dampers(py::module_& m) {
-  py::enum_<ContactState>(m, "ContactState")
-      .value("Stick", ContactState::Stick)
-      .value("SlipPositive", ContactState::SlipPositive)
-      .value("SlipNegative", ContactState::SlipNegative)
-      .value("LiftOff", ContactState::LiftOff)
-      .value("Separated", ContactState::Separated);
-  py::enum_<MemberEnd>(m, "MemberEnd")
-      .value("Default", MemberEnd::Default)
-      .value("Stop", MemberEnd::Stop)
-      .value("Extend", MemberEnd::Extend)
-      .value("Wall", MemberEnd::Wall);
-  py::enum_<Separation>(m, "Separation")
-      .value("Stop", Separation::Stop)
-      .value("Separate", Separation::Separate);
-  py::enum_<LoadDirection>(m, "LoadDirection")
-      .value("GlobalX", LoadDirection::GlobalX)
-      .value("GlobalY", LoadDirection::GlobalY)
-      .value("Axial", LoadDirection::Axial)
-      .value("Transverse", LoadDirection::Transverse)
-      .value("Moment", LoadDirection::Moment);
-  py::enum_<NormalLoad>(m, "NormalLoad").value("Constant", NormalLoad::Constant).value("Inertial", NormalLoad::Inertial);
-  py::enum_<ContactPoint>(m, "ContactPoint").value("Fixed", ContactPoint::Fixed).value("Moving", ContactPoint::Moving);
-  py::enum_<EndPolicy>(m, "EndPolicy")
-      .value("Throw", EndPolicy::Throw)
-      .value("Clamp", EndPolicy::Clamp)
-      .value("Extrapolate", EndPolicy::Extrapolate);
-  py::class_<CoulombLaw<double>>(m, "CoulombLaw", "Coulomb friction with static mu_s >= kinetic mu_k.")
-      .def(py::init<double, double>(), py::arg("mu_s"), py::arg("mu_k"));
-  py::class_<StribeckLaw<double>>(m, "StribeckLaw")
+  py::enum_<ContactState>(m, "ContactState", "The state of one friction contact (docs/contact.md).")
+      .value("Stick", ContactState::Stick, "v = 0, |f| <= mu_s N")
+      .value("SlipPositive", ContactState::SlipPositive, "v > 0, f = -mu_k(|v|) N")
+      .value("SlipNegative", ContactState::SlipNegative, "v < 0, f = +mu_k(|v|) N")
+      .value("LiftOff", ContactState::LiftOff, "N <= 0: no contact force, f = 0")
+      .value("Separated", ContactState::Separated, "the damper flies free of the member, N = 0, f = 0");
+  py::enum_<MemberEnd>(m, "MemberEnd", "What a moving contact does at one end of its member (docs/model.md).")
+      .value("Default", MemberEnd::Default, "as ModelOptions.end_policy says: Throw -> Stop, Clamp/Extrapolate -> Extend")
+      .value("Stop", MemberEnd::Stop, "stop the run with StopReason.LeftMember")
+      .value("Extend", MemberEnd::Extend, "continue with the end element's shapes")
+      .value("Wall", MemberEnd::Wall, "a rigid end stop: V -> -e V (PointDamper.wall_restitution)");
+  py::enum_<Separation>(m, "Separation", "What happens when a damper's normal force reaches zero (docs/model.md).")
+      .value("Stop", Separation::Stop, "stop the run with StopReason.LiftOff (permanent contact; default)")
+      .value("Separate", Separation::Separate,
+             "the damper leaves the member, flies and lands again through an impact (PointDamper.restitution)");
+  py::enum_<LoadDirection>(m, "LoadDirection", "Direction of a point load or probe.")
+      .value("GlobalX", LoadDirection::GlobalX, "along global X")
+      .value("GlobalY", LoadDirection::GlobalY, "along global Y")
+      .value("Axial", LoadDirection::Axial, "along the member's local u axis")
+      .value("Transverse", LoadDirection::Transverse, "along the member's local w axis")
+      .value("Moment", LoadDirection::Moment, "a moment about Z (a probe: the rotation)");
+  py::enum_<NormalLoad>(m, "NormalLoad", "A damper's normal force model.")
+      .value("Constant", NormalLoad::Constant, "N = N0: no vertical inertia of the damper")
+      .value("Inertial", NormalLoad::Inertial, "N = N0 - s m y'': the damper follows the member (paper eqs 23-24)");
+  py::enum_<ContactPoint>(m, "ContactPoint", "Whether a damper's contact point moves along its member.")
+      .value("Fixed", ContactPoint::Fixed, "X = X0: the shapes at the contact are evaluated once")
+      .value("Moving", ContactPoint::Moving, "X' = V: the contact slides with the relative motion (paper eqs 10, 19)");
+  py::enum_<EndPolicy>(m, "EndPolicy", "What a contact point beyond a member end does (docs/moving_load.md).")
+      .value("Throw", EndPolicy::Throw, "stop the run with StopReason.LeftMember (default)")
+      .value("Clamp", EndPolicy::Clamp, "evaluate the shapes at the nearest end")
+      .value("Extrapolate", EndPolicy::Extrapolate, "continue the end element's interpolants beyond the end");
+  using Coulomb = CoulombLaw<double>;
+  py::class_<Coulomb>(m, "CoulombLaw", "Coulomb friction with static mu_s >= kinetic mu_k (dimensionless).")
+      .def(py::init<double, double>(), py::arg("mu_s"), py::arg("mu_k"),
+           "Static coefficient mu_s, kinetic mu_k (0 <= mu_k <= mu_s).")
+      .def("mu_s", &Coulomb::mu_s, "Static coefficient mu_s.")
+      .def("mu_k", &Coulomb::mu_k, "Kinetic coefficient mu_k.")
+      .def("static_coefficient", &Coulomb::static_coefficient, "mu_s: stick holds while |f| <= mu_s N.")
+      .def("kinetic_coefficient", &Coulomb::kinetic_coefficient, py::arg("speed"),
+           "mu_k at a sliding speed [m/s] >= 0 (constant).");
+  using Stribeck = StribeckLaw<double>;
+  py::class_<Stribeck>(m, "StribeckLaw",
+                       "Stribeck friction mu(v) = mu_k + (mu_s - mu_k) exp(-(|v| / v_s)^exponent).")
       .def(py::init<double, double, double, double>(), py::arg("mu_s"), py::arg("mu_k"), py::arg("v_s"),
-           py::arg("exponent") = 2.0);
-  py::class_<RegularisedLaw<double>>(m, "RegularisedLaw", "tanh-regularised friction mu tanh(v / v_eps).")
-      .def(py::init([](double mu, double v_eps) { return RegularisedLaw<double>(mu, v_eps); }), py::arg("mu"),
-           py::arg("v_eps"));
+           py::arg("exponent") = 2.0,
+           "Static mu_s, kinetic mu_k, Stribeck velocity v_s [m/s] > 0, exponent (default 2).")
+      .def("mu_s", &Stribeck::mu_s, "Static coefficient mu_s.")
+      .def("mu_k", &Stribeck::mu_k, "Kinetic coefficient mu_k (the limit at high speed).")
+      .def("v_s", &Stribeck::v_s, "Stribeck velocity v_s [m/s].")
+      .def("exponent", &Stribeck::exponent, "Exponent of the Stribeck decay.")
+      .def("static_coefficient", &Stribeck::static_coefficient, "mu_s = mu(0): stick holds while |f| <= mu_s N.")
+      .def("kinetic_coefficient", &Stribeck::kinetic_coefficient, py::arg("speed"),
+           "mu(speed) for a sliding speed [m/s] >= 0.");
+  py::enum_<RegularisedShape>(m, "RegularisedShape", "The shape of a RegularisedLaw.")
+      .value("Tanh", RegularisedShape::Tanh, "mu tanh(v / v_eps): smooth")
+      .value("LinearSaturated", RegularisedShape::LinearSaturated,
+             "mu clamp(v / v_eps, -1, 1): exact Coulomb for |v| >= v_eps");
+  using Regularised = RegularisedLaw<double>;
+  py::class_<Regularised>(m, "RegularisedLaw",
+                          "Regularised friction without a stick state: f = -mu s(v / v_eps) N (s: tanh by default).")
+      .def(py::init([](double mu, double v_eps, RegularisedShape shape) { return Regularised(mu, v_eps, shape); }),
+           py::arg("mu"), py::arg("v_eps"), py::arg("shape") = RegularisedShape::Tanh,
+           "Coefficient mu >= 0, regularisation velocity v_eps [m/s] > 0, shape (default Tanh).")
+      .def("mu", &Regularised::mu, "Saturated coefficient mu.")
+      .def("v_eps", &Regularised::v_eps, "Regularisation velocity v_eps [m/s].")
+      .def("coefficient", &Regularised::coefficient, py::arg("v"),
+           "Odd friction coefficient at a sliding velocity v [m/s]: f = -coefficient(v) N.");
 
   using Damper = System::Damper;
-  py::class_<Damper>(m, "PointDamper", "A point-contact friction damper on a member (docs/model.md).")
+  py::class_<Damper>(m, "PointDamper",
+                     "A point-contact friction damper on a member (docs/model.md): it slides along the member's "
+                     "local axis u, follows its transverse motion w, is held by a spring to its support and pressed "
+                     "against the member by the preload N0. The share s scales its mass and spring.")
       .def(py::init([](MemberId member, double coordinate, double mass, double stiffness, double preload,
                        const py::object& law, double share) {
              return Damper(member, coordinate, mass, stiffness, preload, to_law(law), share);
            }),
            py::arg("member"),
            py::arg("contact_coordinate"), py::arg("mass"), py::arg("stiffness"), py::arg("preload"), py::arg("law"),
-           py::arg("share") = 1.0)
-      .def_readwrite("member", &Damper::member)
-      .def_readwrite("contact_coordinate", &Damper::contact_coordinate)
-      .def_readwrite("mass", &Damper::mass)
-      .def_readwrite("stiffness", &Damper::stiffness)
-      .def_readwrite("preload", &Damper::preload)
-      .def_readwrite("share", &Damper::share)
-      .def_readwrite("side", &Damper::side)
-      .def_readwrite("initial_state", &Damper::initial_state)
-      .def_readwrite("normal_load", &Damper::normal_load)
-      .def_readwrite("contact_point", &Damper::contact_point)
-      .def_readwrite("separation", &Damper::separation)
-      .def_readwrite("restitution", &Damper::restitution)
-      .def_readwrite("landing_speed", &Damper::landing_speed)
-      .def_readwrite("start_end", &Damper::start_end)
-      .def_readwrite("finish_end", &Damper::finish_end)
-      .def_readwrite("wall_restitution", &Damper::wall_restitution);
+           py::arg("share") = 1.0,
+           "A damper on `member` at contact_coordinate X0 [m] with mass m [kg] > 0, spring k [N/m] >= 0, preload "
+           "N0 [N] >= 0, a friction law (CoulombLaw, StribeckLaw or RegularisedLaw) and share s in (0, 1] "
+           "(default 1).")
+      .def_static(
+          "centrifugal",
+          [](MemberId member, double coordinate, double mass, double stiffness, double radius, double spin,
+             const py::object& law, double share) {
+            return Damper::centrifugal(member, coordinate, mass, stiffness, radius, spin,
+                                       to_law(law, "PointDamper.centrifugal"), share);
+          },
+          py::arg("member"), py::arg("contact_coordinate"), py::arg("mass"), py::arg("stiffness"), py::arg("radius"),
+          py::arg("spin"), py::arg("law"), py::arg("share") = 1.0,
+          "A damper whose preload is the centrifugal force N0 = s m r Omega^2: radius r [m], spin Omega [rad/s].")
+      .def_readwrite("member", &Damper::member, "member the damper touches")
+      .def_readwrite("contact_coordinate", &Damper::contact_coordinate,
+                     "initial contact coordinate X0 along the member [m]")
+      .def_readwrite("mass", &Damper::mass, "damper mass m [kg] (> 0)")
+      .def_readwrite("stiffness", &Damper::stiffness, "spring k to the damper's support along u [N/m] (>= 0)")
+      .def_readwrite("preload", &Damper::preload, "N0, this structure's share of the normal load [N] (>= 0)")
+      .def_readwrite("share", &Damper::share, "share factor s in (0, 1] of the damper's mass and spring (default 1)")
+      .def_property(
+          "law", [](const Damper& d) { return d.law; },
+          [](Damper& d, const py::object& law) { d.law = to_law(law, "PointDamper"); },
+          "the friction law (CoulombLaw, StribeckLaw or RegularisedLaw)")
+      .def_readwrite("side", &Damper::side,
+                     "+1: the damper presses the member along its local +w axis (default); -1: along -w")
+      .def_readwrite("initial_state", &Damper::initial_state, "ContactState requested at t0 (default Stick)")
+      .def_readwrite("normal_load", &Damper::normal_load,
+                     "NormalLoad: Inertial (default) or Constant; ModelOptions.normal_load = Constant overrides it")
+      .def_readwrite("contact_point", &Damper::contact_point,
+                     "ContactPoint: Moving (default) or Fixed; ModelOptions.moving_contact = False overrides it")
+      .def_readwrite("separation", &Damper::separation,
+                     "Separation when the normal force reaches zero: Stop the run (default) or Separate")
+      .def_readwrite("restitution", &Damper::restitution,
+                     "coefficient of restitution e in [0, 1] of the damper's impacts (Separate; default 0)")
+      .def_readwrite("landing_speed", &Damper::landing_speed,
+                     "impacts at or below this normal speed [m/s] land (default 1e-4)")
+      .def_readwrite("start_end", &Damper::start_end, "MemberEnd at X = 0 of the member (default Default)")
+      .def_readwrite("finish_end", &Damper::finish_end, "MemberEnd at X = L of the member (default Default)")
+      .def_readwrite("wall_restitution", &Damper::wall_restitution,
+                     "coefficient of restitution e in [0, 1] of a MemberEnd.Wall: V -> -e V (default 1)")
+      .def("effective_mass", &Damper::effective_mass, "Effective mass s m [kg].")
+      .def("effective_stiffness", &Damper::effective_stiffness, "Effective spring s k [N/m].");
   using Load = System::Load;
-  py::class_<Load>(m, "PointLoad", "A point load F(t) = amplitude sin(omega t + phase) + offset, or time_function(t).")
+  py::class_<Load>(m, "PointLoad",
+                   "A point load on a member: F(t) = amplitude sin(omega t + phase) + offset, or time_function(t) "
+                   "when set.")
       .def(py::init([](MemberId member, double coordinate, LoadDirection direction, double amplitude, double omega,
                        double phase, double offset) {
              Load l = Load::harmonic(member, coordinate, direction, amplitude, omega, phase);
@@ -464,24 +582,43 @@ void bind_dampers(py::module_& m) {
              return l;
            }),
            py::arg("member"), py::arg("coordinate"), py::arg("direction") = LoadDirection::GlobalX,
-           py::arg("amplitude") = 0.0, py::arg("omega") = 0.0, py::arg("phase") = 0.0, py::arg("offset") = 0.0)
+           py::arg("amplitude") = 0.0, py::arg("omega") = 0.0, py::arg("phase") = 0.0, py::arg("offset") = 0.0,
+           "A load at `coordinate` [m] along `member` in `direction` (default GlobalX): amplitude [N] (or [N m]), "
+           "omega [rad/s], phase [rad], offset [N] (all default 0).")
       .def_static("harmonic", &Load::harmonic, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
-                  py::arg("amplitude"), py::arg("omega"), py::arg("phase") = 0.0)
+                  py::arg("amplitude"), py::arg("omega"), py::arg("phase") = 0.0,
+                  "A harmonic load F(t) = amplitude sin(omega t + phase): amplitude [N], omega [rad/s], phase [rad].")
+      .def_readwrite("member", &Load::member, "member the load acts on")
+      .def_readwrite("coordinate", &Load::coordinate, "position along the member [m]")
+      .def_readwrite("direction", &Load::direction, "LoadDirection (Moment: a moment about Z [N m])")
+      .def_readwrite("amplitude", &Load::amplitude, "amplitude [N] or [N m]")
+      .def_readwrite("omega", &Load::omega, "circular frequency [rad/s]")
+      .def_readwrite("phase", &Load::phase, "phase [rad]")
+      .def_readwrite("offset", &Load::offset, "constant part [N]")
       .def_property(
           "time_function", [](const Load& l) { return l.time_function; },
           [](Load& l, const py::object& f) { l.time_function = python_time_function(f, "PointLoad", "F"); },
-          "optional F(t) (a Python callable; slower)")
-      .def("value", &Load::value, py::arg("t"));
+          "optional F(t) [N] (a Python callable, called with the GIL: slower); None: the harmonic form")
+      .def("value", &Load::value, py::arg("t"), "F(t) [N] at time t [s].");
   using Options = ModelOptions<double>;
   py::class_<Options>(m, "ModelOptions", "What a friction-damped scene models (docs/model.md).")
-      .def(py::init<>())
-      .def_readwrite("normal_load", &Options::normal_load)
-      .def_readwrite("moving_contact", &Options::moving_contact)
-      .def_readwrite("convective_terms", &Options::convective_terms)
-      .def_readwrite("watch_lift_off", &Options::watch_lift_off)
-      .def_readwrite("energy_audit", &Options::energy_audit)
-      .def_readwrite("end_policy", &Options::end_policy)
-      .def_readwrite("refine_stale_factorisation", &Options::refine_stale_factorisation);
+      .def(py::init<>(), "The default options: the paper's full model.")
+      .def_readwrite("normal_load", &Options::normal_load,
+                     "NormalLoad.Inertial (default: N varies with the damper's vertical inertia, paper eqs 23-24) "
+                     "or Constant (for every damper)")
+      .def_readwrite("moving_contact", &Options::moving_contact,
+                     "the contact points move with the slip (default True; False fixes every damper's contact)")
+      .def_readwrite("convective_terms", &Options::convective_terms,
+                     "keep the convective terms of the damper's vertical acceleration (paper eq 19; default True)")
+      .def_readwrite("watch_lift_off", &Options::watch_lift_off,
+                     "watch the normal force and stop (or separate) when it reaches zero (default True)")
+      .def_readwrite("energy_audit", &Options::energy_audit,
+                     "integrate the work and dissipation terms alongside the state (default True)")
+      .def_readwrite("end_policy", &Options::end_policy,
+                     "EndPolicy of a contact point at a member end (default Throw: the run stops)")
+      .def_readwrite("refine_stale_factorisation", &Options::refine_stale_factorisation,
+                     "solve by iterative refinement from the last factorisation while it converges (default True; "
+                     "False: every result a function of the state alone, bitwise)");
 }
 
 /// A FrictionDampedSystem property of a PySystem (pybind11 does not adapt the base's noexcept
@@ -492,51 +629,114 @@ decltype(auto) system_getter(const PySystem& system) {
 }
 
 void bind_system(py::module_& m) {
-  py::class_<System::ContactEvent>(m, "ContactEvent", "One damper's contact switch.")
-      .def_readonly("t", &System::ContactEvent::t)
-      .def_readonly("damper", &System::ContactEvent::damper)
-      .def_readonly("from_state", &System::ContactEvent::from)
-      .def_readonly("to_state", &System::ContactEvent::to);
-  py::class_<System::EnergyBalance>(m, "EnergyBalance", "E(t) - E0 = W_ext - D_visc - D_fric + W_slope - D_imp + residual.")
-      .def_readonly("mechanical", &System::EnergyBalance::mechanical)
-      .def_readonly("external_work", &System::EnergyBalance::external_work)
-      .def_readonly("viscous_dissipation", &System::EnergyBalance::viscous_dissipation)
-      .def_readonly("friction_dissipation", &System::EnergyBalance::friction_dissipation)
-      .def_readonly("slope_work", &System::EnergyBalance::slope_work)
-      .def_readonly("impact_loss", &System::EnergyBalance::impact_loss)
-      .def_readonly("residual", &System::EnergyBalance::residual);
-  py::enum_<System::StopReason>(m, "StopReason")
-      .value("None_", System::StopReason::None)
-      .value("LiftOff", System::StopReason::LiftOff)
-      .value("LeftMember", System::StopReason::LeftMember)
-      .value("NoConsistentState", System::StopReason::NoConsistentState)
-      .value("NonFiniteLoad", System::StopReason::NonFiniteLoad);
+  py::class_<System::ContactEvent>(m, "ContactEvent", "One damper's contact switch (FrictionDampedSystem.events()).")
+      .def_readonly("t", &System::ContactEvent::t, "time of the switch [s]")
+      .def_readonly("damper", &System::ContactEvent::damper, "index of the damper that switched")
+      .def_readonly("from_state", &System::ContactEvent::from, "its ContactState before (C++: from)")
+      .def_readonly("to_state", &System::ContactEvent::to, "its ContactState after (C++: to)");
+  using Impact = System::ImpactEvent;
+  py::class_<Impact>(m, "ImpactEvent",
+                     "One impact of a separated damper on its member, or of a moving contact on a MemberEnd.Wall "
+                     "(FrictionDampedSystem.impacts(); docs/model.md, \"Separation\").")
+      .def_readonly("t", &Impact::t, "time of the impact [s]")
+      .def_readonly("damper", &Impact::damper, "index of the damper")
+      .def_readonly("normal_impulse", &Impact::normal_impulse, "L_n >= 0 [N s], pushing the damper off the member")
+      .def_readonly("tangential_impulse", &Impact::tangential_impulse, "L_t on the damper along u [N s]")
+      .def_readonly("normal_velocity", &Impact::normal_velocity, "gap' before the impact [m/s] (< 0: approaching)")
+      .def_readonly("normal_velocity_after", &Impact::normal_velocity_after,
+                    "gap' after [m/s]: -e v_n (bounce) or 0 (landing)")
+      .def_readonly("sliding_velocity", &Impact::sliding_velocity, "V before the impact [m/s]")
+      .def_readonly("sliding_velocity_after", &Impact::sliding_velocity_after, "V after [m/s]")
+      .def_readonly("energy_loss", &Impact::energy_loss, "kinetic energy lost [J] (the audit's impact term)")
+      .def_readonly("to_state", &Impact::to, "Separated (a bounce) or the ContactState of the landing (C++: to)")
+      .def_readonly("wall", &Impact::wall, "True for an impact on a MemberEnd.Wall");
+  using Balance = System::EnergyBalance;
+  py::class_<Balance>(m, "EnergyBalance",
+                      "The energy audit of a FrictionDampedSystem [J]: E(t) - E0 = W_ext - D_visc - D_fric + W_slope "
+                      "- D_imp + residual.")
+      .def_readonly("mechanical", &Balance::mechanical,
+                    "E(t): modal kinetic + strain energy, dampers' kinetic, spring and preload potential [J]")
+      .def_readonly("external_work", &Balance::external_work, "W_ext, work of the point loads [J]")
+      .def_readonly("viscous_dissipation", &Balance::viscous_dissipation, "D_visc >= 0, dissipated by modal damping [J]")
+      .def_readonly("friction_dissipation", &Balance::friction_dissipation, "D_fric >= 0, dissipated by friction [J]")
+      .def_readonly("slope_work", &Balance::slope_work,
+                    "W_slope, work of the normal forces as the contacts slide over a sloped member [J]")
+      .def_readonly("impact_loss", &Balance::impact_loss, "D_imp, kinetic energy lost in impacts [J]")
+      .def_readonly("residual", &Balance::residual, "(E - E0) - (W_ext - D_visc - D_fric + W_slope - D_imp) [J]")
+      .def("relative_residual", &Balance::relative_residual,
+           "|residual| / the largest term of the audit (|residual| when every term is 0), for a run from rest.");
+  py::enum_<System::StopReason>(m, "StopReason", "Why a FrictionDampedSystem stopped a run (stop_reason()).")
+      .value("None_", System::StopReason::None, "it did not stop one (C++: None, a Python keyword)")
+      .value("LiftOff", System::StopReason::LiftOff, "a damper's normal force reached zero (Separation.Stop)")
+      .value("LeftMember", System::StopReason::LeftMember, "a contact point left its member (MemberEnd.Stop)")
+      .value("NoConsistentState", System::StopReason::NoConsistentState, "no consistent contact state exists")
+      .value("NonFiniteLoad", System::StopReason::NonFiniteLoad, "a point load's value was not finite at the start");
+  using Fault = System::LoadFault;
+  py::class_<Fault>(m, "LoadFault", "The most recent evaluation in which a point load's value was not finite.")
+      .def_readonly("load", &Fault::load, "index of the load (-1: none since construction)")
+      .def_readonly("t", &Fault::t, "time of that evaluation [s]")
+      .def_readonly("value", &Fault::value, "the value F_l(t)")
+      .def_readonly("count", &Fault::count, "evaluations with a non-finite load value since construction");
+  using Stuck = StuckModes<double>;
+  py::class_<Stuck>(m, "StuckModes", "Undamped natural modes of a FrictionDampedSystem with every damper stuck.")
+      .def_readonly("omega", &Stuck::omega, "natural circular frequencies [rad/s], ascending (numpy)")
+      .def_readonly("shapes", &Stuck::shapes,
+                    "column j: mode j in modal coordinates q, normalised to v^T M v = 1 (numpy, n x n)")
+      .def("frequencies_hz", [](const Stuck& s) { return Eigen::VectorXd(s.omega / (2 * EIGEN_PI)); },
+           "The natural frequencies omega / (2 pi) [Hz] (numpy).");
   // PySystem: the system and the lock of the calls that run or evaluate it (call_guard.hpp).
   py::class_<PySystem>(m, "FrictionDampedSystem",
-                       "Frame modes + friction dampers + loads (paper eqs 26-29). Calls that run or evaluate one "
-                       "system from several threads run one after the other (docs/python.md).")
+                       "Frame modes + friction dampers + point loads (paper eqs 26-29; docs/model.md). State [q, q', "
+                       "x, x', X (moving contacts), flight coordinates, audit integrals]; modes are lists of "
+                       "ContactState, one per damper. Calls that run or evaluate one system from several threads "
+                       "run one after the other (docs/python.md).")
       .def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<System::Damper>,
                     std::vector<System::Load>, const ModelOptions<double>&>(),
            py::arg("frame"), py::arg("basis"), py::arg("dampers"), py::arg("loads") = std::vector<System::Load>{},
-           py::arg("options") = ModelOptions<double>{})
-      .def_property_readonly("num_modes", &system_getter<&System::num_modes>)
-      .def_property_readonly("num_dampers", &system_getter<&System::num_dampers>)
-      .def_property_readonly("state_size", &system_getter<&System::state_size>)
-      .def_property_readonly("q_offset", &system_getter<&System::q_offset>)
-      .def_property_readonly("qd_offset", &system_getter<&System::qd_offset>)
-      .def_property_readonly("x_offset", &system_getter<&System::x_offset>)
-      .def_property_readonly("xd_offset", &system_getter<&System::xd_offset>)
-      .def_property_readonly("contact_offset", &system_getter<&System::contact_offset>)
-      .def_property_readonly("flight_offset", &system_getter<&System::flight_offset>)
-      .def_property_readonly("num_separable", &system_getter<&System::num_separable>)
-      .def_property_readonly("energy_offset", &system_getter<&System::energy_offset>)
-      .def_property_readonly("options", &system_getter<&System::options>)
-      .def_property_readonly("dampers", &system_getter<&System::dampers>)
-      .def_property_readonly("omega_squared", &system_getter<&System::omega_squared>)
+           py::arg("options") = ModelOptions<double>{},
+           "Composes `basis` (modes of `frame`) with the dampers, the point loads (default none) and the "
+           "ModelOptions (default: the full model). ValueError naming the damper or load and the parameter.")
+      .def("num_modes", &system_getter<&System::num_modes>, "n, the number of retained modes.")
+      .def("num_dampers", &system_getter<&System::num_dampers>, "D, the number of dampers.")
+      .def("state_size", &system_getter<&System::state_size>,
+           "2n + 2D, + D with a moving contact, + 2S flight coordinates, + audit_size().")
+      .def("q_offset", &system_getter<&System::q_offset>, "Offset of the modal coordinates q (n entries): 0.")
+      .def("qd_offset", &system_getter<&System::qd_offset>, "Offset of the modal velocities q' (n entries): n.")
+      .def("x_offset", &system_getter<&System::x_offset>, "Offset of the damper displacements x_i (D entries): 2n.")
+      .def("xd_offset", &system_getter<&System::xd_offset>, "Offset of the damper velocities x_i' (D entries): 2n + D.")
+      .def("contact_offset", &system_getter<&System::contact_offset>,
+           "Offset of the contact coordinates X (D entries; -1 without a moving contact).")
+      .def("flight_offset", &system_getter<&System::flight_offset>,
+           "Offset of the flight coordinates y_d, then y_d' (S entries each; -1 when no damper may separate).")
+      .def("num_separable", &system_getter<&System::num_separable>, "S, the number of dampers that may separate.")
+      .def(
+          "flight_slot",
+          [](const PySystem& s, Index i) {
+            if (i < 0 || i >= s.num_dampers())
+              detail::throw_invalid("FrictionDampedSystem.flight_slot",
+                                    "i must be in [0, num_dampers() = " + std::to_string(s.num_dampers()) + ")", i);
+            return s.flight_slot(i);
+          },
+          py::arg("i"), "Slot of damper i among the flight coordinates (0 .. S - 1), -1 when it cannot separate.")
+      .def("energy_offset", &system_getter<&System::energy_offset>,
+           "Offset of the energy-audit integrals (-1 without the audit).")
+      .def("audit_size", &system_getter<&System::audit_size>,
+           "Number of audit integrals: 0 without the audit, 4 (W_ext, D_visc, D_fric, W_slope), 5 with impacts (D_imp).")
+      .def("options", &system_getter<&System::options>, "The ModelOptions the system was built with (a copy).")
+      .def("dampers", &system_getter<&System::dampers>, "The dampers, in the order of the state and the mode (copies).")
+      .def("loads", &system_getter<&System::loads>, "The point loads (copies).")
+      .def("omega_squared", &system_getter<&System::omega_squared>,
+           "Squared natural frequencies omega_j^2 of the retained modes [rad^2/s^2] (numpy).")
+      .def("linear_rates", [](const PySystem& s) { return s.linear_rates(); },
+           "The rates [1/s] (complex) an explicit fixed step must resolve: the modes', the dampers' slip "
+           "oscillators, ... (docs/model.md, \"Step rates\").")
       .def("point_shape", &System::point_shape, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
-           "Row psi with psi^T q the displacement of the point along `direction`.")
-      .def("initial_state", &System::initial_state)
-      .def("requested_mode", [](const PySystem& s) { return to_list(s.requested_mode()); })
+           "Row psi (numpy) with psi . q the displacement of point `coordinate` [m] of `member` along `direction` "
+           "(Moment: the rotation).")
+      .def("initial_state", &System::initial_state,
+           "The state at rest: q = q' = 0, each damper at its contact coordinate X0 (numpy).")
+      .def("requested_mode", [](const PySystem& s) { return to_list(s.requested_mode()); },
+           "Each damper's initial_state (a list of ContactState).")
       .def(
           "make_consistent",
           [](PySystem& s, std::vector<ContactState> mode, double t, State x) {
@@ -544,7 +744,9 @@ void bind_system(py::module_& m) {
             const bool ok = with_system(s, [&](SignalCheck&) { return s.make_consistent(md, t, x); });
             return py::make_tuple(ok, to_list(md), x);
           },
-          py::arg("mode"), py::arg("t"), py::arg("x"), "(ok, mode, x) made consistent at t.")
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "(ok, mode, x) made consistent at t [s]: each damper's state where its forces put it, stuck velocities "
+          "projected (ok False: no consistent state, see stop_reason()).")
       .def(
           "evaluate",
           [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
@@ -555,19 +757,33 @@ void bind_system(py::module_& m) {
             });
             py::dict d;
             d["qdd"] = e.qdd, d["N"] = e.N, d["f"] = e.f, d["V"] = e.V, d["xdd"] = e.xdd, d["X"] = e.X;
-            d["slope"] = e.slope, d["y"] = e.y;
+            d["slope"] = e.slope, d["y"] = e.y, d["gap"] = e.gap, d["wall_force"] = e.wall_force;
+            d["finite"] = e.finite;
             return d;
           },
-          py::arg("mode"), py::arg("t"), py::arg("x"), "Forces and kinematics of the dampers (dict of arrays).")
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "Forces and kinematics at (mode, t, x): a dict of numpy arrays, one entry per damper: qdd (modal "
+          "accelerations, n), N normal force [N], f friction force on the damper [N], V sliding velocity [m/s], "
+          "xdd, X contact coordinate [m], slope, y normal displacement [m], gap [m], wall_force [N]; finite.")
       .def(
           "events",
           [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.events(); }); },
-          "Contact switches logged since construction or clear_events().")
-      .def("clear_events", [](PySystem& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); })
-      .def_property_readonly(
-          "stop_reason", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_reason(); }); })
-      .def_property_readonly(
-          "stop_damper", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_damper(); }); })
+          "Contact switches (ContactEvent) logged since construction or clear_events().")
+      .def(
+          "impacts",
+          [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.impacts(); }); },
+          "Impacts (ImpactEvent) logged since construction or clear_events().")
+      .def("clear_events", [](PySystem& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); },
+           "Forgets the logged switches and impacts.")
+      .def(
+          "stop_reason", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_reason(); }); },
+          "Why the system stopped the last run (StopReason; None_ when it did not).")
+      .def(
+          "stop_damper", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.stop_damper(); }); },
+          "The damper that stopped the last run (-1 when none).")
+      .def(
+          "load_fault", [](const PySystem& s) { return with_system(s, [&](SignalCheck&) { return s.load_fault(); }); },
+          "The most recent non-finite point-load value (LoadFault).")
       .def(
           "mechanical_energy",
           [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
@@ -577,7 +793,8 @@ void bind_system(py::module_& m) {
               return s.mechanical_energy(md, t, x);
             });
           },
-          py::arg("mode"), py::arg("t"), py::arg("x"))
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "E at (mode, t, x) [J]: modal kinetic + strain energy, dampers' kinetic, spring and preload potential.")
       .def(
           "energy_balance",
           [](PySystem& s, const std::vector<ContactState>& mode, double t, const State& x, double E0) {
@@ -587,7 +804,19 @@ void bind_system(py::module_& m) {
               return s.energy_balance(md, t, x, E0);
             });
           },
-          py::arg("mode"), py::arg("t"), py::arg("x"), py::arg("E0"));
+          py::arg("mode"), py::arg("t"), py::arg("x"), py::arg("E0"),
+          "The energy audit (EnergyBalance) at (mode, t, x) from the start's energy E0 [J] (needs "
+          "ModelOptions.energy_audit).");
+  m.def(
+      "stuck_natural_modes",
+      [](const PySystem& system, std::optional<Eigen::VectorXd> X) {
+        return X ? stuck_natural_modes(static_cast<const System&>(system), *X)
+                 : stuck_natural_modes(static_cast<const System&>(system));
+      },
+      py::arg("system"), py::arg("X") = py::none(),
+      "Natural modes (StuckModes) of the system with every damper stuck at the contact coordinates X [m] (one per "
+      "damper; default: each damper's contact_coordinate): each stuck damper adds its mass and spring to the "
+      "structure; modal damping is left out (docs/model.md).");
 }
 
 /// Evaluation of a ContactSystem as a dict of arrays.
@@ -607,7 +836,7 @@ void bind_contacts(py::module_& m) {
                     "A material point of the structure: `coordinate` [m] along member `member` (0 at the member's "
                     "first node), in [0, length] (docs/contacts.md).")
       .def(py::init([](MemberId member, double coordinate) { return Point{member, coordinate}; }), py::arg("member"),
-           py::arg("coordinate"))
+           py::arg("coordinate"), "The point `coordinate` [m] along member `member`.")
       .def_readwrite("member", &Point::member, "member the point lies on")
       .def_readwrite("coordinate", &Point::coordinate, "position along the member [m]")
       .def("__repr__", [](const Point& p) {
@@ -617,7 +846,8 @@ void bind_contacts(py::module_& m) {
   py::class_<Direction>(m, "PlaneDirection",
                         "An in-plane direction (x, y) in global components; a contact needs a unit vector (|d| = 1 "
                         "to 1e-9, checked by ContactSystem: ValueError naming direction).")
-      .def(py::init([](double x, double y) { return Direction{x, y}; }), py::arg("x") = 1.0, py::arg("y") = 0.0)
+      .def(py::init([](double x, double y) { return Direction{x, y}; }), py::arg("x") = 1.0, py::arg("y") = 0.0,
+           "The direction (x, y) in global components (default global X).")
       .def_readwrite("x", &Direction::x, "global X component")
       .def_readwrite("y", &Direction::y, "global Y component")
       .def_static("at_angle", &Direction::at_angle, py::arg("angle"),
@@ -632,7 +862,8 @@ void bind_contacts(py::module_& m) {
              n.time_function = python_time_function(time_function, "HeldNormal", "N");
              return n;
            }),
-           py::arg("value") = 1.0, py::arg("time_function") = py::none())
+           py::arg("value") = 1.0, py::arg("time_function") = py::none(),
+           "A normal force of `value` [N] (default 1), or time_function(t) [N] when given.")
       .def_readwrite("value", &Normal::value, "constant normal force [N] (default 1)")
       .def_property(
           "time_function", [](const Normal& n) { return n.time_function; },
@@ -674,7 +905,7 @@ void bind_contacts(py::module_& m) {
       .def("normal_force", &Contact::normal_force, py::arg("t"), "N(t) [N].")
       .def("start_state", &Contact::start_state, "The contact state at the start of a run.");
   py::class_<COptions>(m, "ContactSystemOptions", "Options of a ContactSystem.")
-      .def(py::init<>())
+      .def(py::init<>(), "The default options: the energy audit on.")
       .def_readwrite("energy_audit", &COptions::energy_audit,
                      "carry the audit integrals W_ext, D_visc, D_fric as three extra states (default True)")
       .def_readwrite("velocity_tolerance", &COptions::velocity_tolerance,
@@ -707,17 +938,16 @@ void bind_contacts(py::module_& m) {
           "Assembles each contact's row from `frame` and `basis` (a basis of that frame). ValueError naming the "
           "contact and the parameter: a side off its member (coordinate), a non-unit direction, a non-positive "
           "normal.value, a contact that cannot slip (zero row), ...")
-      .def_property_readonly("num_modes", [](const PyContactSystem& s) { return s.num_modes(); }, "n, retained modes")
-      .def_property_readonly("num_contacts", [](const PyContactSystem& s) { return s.num_contacts(); }, "D, contacts")
-      .def_property_readonly("state_size", [](const PyContactSystem& s) { return s.state_size(); },
-                             "2n (+ 3 with the energy audit)")
-      .def_property_readonly("audit_offset", [](const PyContactSystem& s) { return s.audit_offset(); },
-                             "index of the first audit integral (W_ext, D_visc, D_fric)")
-      .def_property_readonly("contacts", [](const PyContactSystem& s) { return s.contacts(); },
-                             "the contacts (copies of the PointContacts)")
-      .def_property_readonly("loads", [](const PyContactSystem& s) { return s.loads(); }, "the point loads (copies)")
-      .def_property_readonly("options", [](const PyContactSystem& s) { return s.options(); },
-                             "the ContactSystemOptions (a copy)")
+      .def("num_modes", [](const PyContactSystem& s) { return s.num_modes(); }, "n, the number of retained modes.")
+      .def("num_contacts", [](const PyContactSystem& s) { return s.num_contacts(); }, "D, the number of contacts.")
+      .def("state_size", [](const PyContactSystem& s) { return s.state_size(); }, "2n (+ 3 with the energy audit).")
+      .def("audit_offset", [](const PyContactSystem& s) { return s.audit_offset(); },
+           "Index of the first audit integral (W_ext, D_visc, D_fric): 2n.")
+      .def("contacts", [](const PyContactSystem& s) { return s.contacts(); }, "The contacts (copies of the PointContacts).")
+      .def("loads", [](const PyContactSystem& s) { return s.loads(); }, "The point loads (copies).")
+      .def("options", [](const PyContactSystem& s) { return s.options(); }, "The ContactSystemOptions (a copy).")
+      .def("linear_rates", [](const PyContactSystem& s) { return s.linear_rates(); },
+           "Roots [1/s] (complex) of s^2 + c_j s + omega_j^2 of every mode (the fixed-step stability check).")
       .def(
           "contact_row",
           [](const PyContactSystem& s, Index i) {
@@ -793,102 +1023,144 @@ void def_simulate(py::module_& m, const char* doc) {
 }
 
 void bind_simulate(py::module_& m) {
-  py::enum_<Integrator>(m, "Integrator")
-      .value("RungeKutta4", Integrator::RungeKutta4)
-      .value("DormandPrince54", Integrator::DormandPrince54)
-      .value("Rosenbrock23", Integrator::Rosenbrock23)
-      .value("Exponential", Integrator::Exponential);
-  py::enum_<EventLocation>(m, "EventLocation")
-      .value("DenseRootFinding", EventLocation::DenseRootFinding)
-      .value("Bisection", EventLocation::Bisection);
-  py::enum_<Status>(m, "Status")
-      .value("Success", Status::Success)
-      .value("StepSizeUnderflow", Status::StepSizeUnderflow)
-      .value("MaxSteps", Status::MaxSteps)
-      .value("NonFiniteState", Status::NonFiniteState)
-      .value("ZenoGuard", Status::ZenoGuard)
-      .value("StoppedByObserver", Status::StoppedByObserver)
-      .value("StoppedBySystem", Status::StoppedBySystem);
-  m.def("status_name", [](Status s) { return std::string(to_string(s)); }, py::arg("status"));
-  py::class_<RunOptions<double>>(m, "RunOptions",
-                                 "Integrator (rk4 | dopri5 | rosenbrock23 | exponential) and stepper options; "
-                                 "keywords: the StepperOptions fields (docs/ode.md).")
-      .def(py::init(&make_run_options), py::arg("integrator") = "dopri5")
-      .def_property(
-          "integrator", [](const RunOptions<double>& o) { return std::string(to_string(o.integrator)); },
-          [](RunOptions<double>& o, const std::string& name) { o.integrator = parse_integrator(name); })
-      .def_property(
-          "rtol", [](const RunOptions<double>& o) { return o.stepper.rtol; },
-          [](RunOptions<double>& o, double v) { o.stepper.rtol = v; })
-      .def_property(
-          "atol", [](const RunOptions<double>& o) { return o.stepper.atol; },
-          [](RunOptions<double>& o, double v) { o.stepper.atol = v; })
-      .def_property(
-          "fixed_step", [](const RunOptions<double>& o) { return o.stepper.fixed_step; },
-          [](RunOptions<double>& o, double v) { o.stepper.fixed_step = v; })
-      .def_property(
-          "output_interval", [](const RunOptions<double>& o) { return o.stepper.output_interval; },
-          [](RunOptions<double>& o, double v) { o.stepper.output_interval = v; })
-      .def_readwrite("check_stability_limit", &RunOptions<double>::check_stability_limit);
+  py::enum_<Integrator>(m, "Integrator", "The integrator of a run (RunOptions names them by string).")
+      .value("RungeKutta4", Integrator::RungeKutta4, "\"rk4\": fixed step RunOptions.fixed_step (the paper's method)")
+      .value("DormandPrince54", Integrator::DormandPrince54, "\"dopri5\": adaptive explicit 5(4) with dense output")
+      .value("Rosenbrock23", Integrator::Rosenbrock23, "\"rosenbrock23\": adaptive linearly implicit, stiffly stable")
+      .value("Exponential", Integrator::Exponential,
+             "\"exponential\": exact exponential where the mode is linear, Lawson Dormand-Prince elsewhere");
+  py::enum_<EventLocation>(m, "EventLocation", "How a guard crossing is located in time.")
+      .value("DenseRootFinding", EventLocation::DenseRootFinding,
+             "Illinois root finding on the method's dense output (default)")
+      .value("Bisection", EventLocation::Bisection, "halve the step, re-integrating from the step start (the paper)");
+  py::enum_<EventState>(m, "EventState", "Which state an event hands to the transition (docs/ode.md).")
+      .value("DenseOutput", EventState::DenseOutput, "the dense output at the located time")
+      .value("Reintegrate", EventState::Reintegrate,
+             "one step of the method from the step start to the event (default)");
+  py::enum_<Status>(m, "Status", "How a run ended (Run.status).")
+      .value("Success", Status::Success, "reached t_end")
+      .value("StepSizeUnderflow", Status::StepSizeUnderflow, "the step fell below min_step")
+      .value("MaxSteps", Status::MaxSteps, "the step budget (max_steps) ran out")
+      .value("NonFiniteState", Status::NonFiniteState, "the right-hand side or the state became NaN/Inf")
+      .value("ZenoGuard", Status::ZenoGuard, "more events per unit time than allowed (chattering / Zeno)")
+      .value("StoppedByObserver", Status::StoppedByObserver, "the run was stopped (e.g. Ctrl-C)")
+      .value("StoppedBySystem", Status::StoppedBySystem, "the system asked to stop (reason in the message)");
+  m.def("status_name", [](Status s) { return std::string(to_string(s)); }, py::arg("status"),
+        "The name of a Status, as C++'s to_string.");
+  using Options = RunOptions<double>;
+  using Stepper = StepperOptions<double>;
+  py::class_<Options> options(m, "RunOptions",
+                              "Integrator (rk4 | dopri5 | rosenbrock23 | exponential) and stepper options: the "
+                              "fields of C++'s RunOptions and of its StepperOptions `stepper`, flattened "
+                              "(docs/ode.md).");
+  options.def(py::init(&make_run_options), py::arg("integrator") = "dopri5",
+              "RunOptions(integrator=\"dopri5\", **options): keywords are the stepper options below and "
+              "check_stability_limit (TypeError for a wrong type, ValueError for an unknown name).");
+  options.def_property(
+      "integrator", [](const Options& o) { return std::string(to_string(o.integrator)); },
+      [](Options& o, const std::string& name) { o.integrator = parse_integrator(name); },
+      "the integrator's name: rk4, dopri5 (default), rosenbrock23 or exponential");
+  const auto stepper_field = [&options](const char* name, auto field, const char* doc) {
+    using T = std::decay_t<decltype(std::declval<Stepper&>().*field)>;
+    options.def_property(
+        name, [field](const Options& o) { return o.stepper.*field; },
+        [field](Options& o, T v) { o.stepper.*field = v; }, doc);
+  };
+  stepper_field("fixed_step", &Stepper::fixed_step, "RK4 step [s] (default 1e-4)");
+  stepper_field("initial_step", &Stepper::initial_step, "first trial step of adaptive methods [s]; 0 = automatic");
+  stepper_field("rtol", &Stepper::rtol, "relative tolerance of adaptive methods (default 1e-6)");
+  stepper_field("atol", &Stepper::atol, "absolute tolerance of adaptive methods (default 1e-9)");
+  stepper_field("safety", &Stepper::safety, "step-size safety factor in (0, 1] (default 0.9)");
+  stepper_field("min_step", &Stepper::min_step, "smallest step, relative to max(1, |t|) (default 1e-14)");
+  stepper_field("max_step", &Stepper::max_step, "largest step of adaptive methods [s] (default inf)");
+  stepper_field("max_steps", &Stepper::max_steps, "budget of step attempts, accepted + rejected (default 1e8)");
+  stepper_field("event_location", &Stepper::event_location, "EventLocation (default DenseRootFinding)");
+  stepper_field("event_state", &Stepper::event_state, "EventState at a root-found event (default Reintegrate)");
+  stepper_field("event_time_tolerance", &Stepper::event_time_tolerance,
+                "width of the final bracket of an event time [s] (default 1e-12)");
+  stepper_field("guard_zero_tolerance", &Stepper::guard_zero_tolerance,
+                "|g| below this at a mode start counts as zero (default 1e-12)");
+  stepper_field("guard_samples", &Stepper::guard_samples,
+                "guard values checked at this many interior points of every step (default 0; docs/ode.md)");
+  stepper_field("zeno_max_events", &Stepper::zeno_max_events,
+                "more events than this inside zeno_window stop the run with ZenoGuard (default 1000)");
+  stepper_field("zeno_window", &Stepper::zeno_window, "length of the window of the event-rate cap [s] (default 1e-6)");
+  stepper_field("zeno_max_immediate_events", &Stepper::zeno_max_immediate_events,
+                "consecutive immediate events allowed (default 100)");
+  stepper_field("output_interval", &Stepper::output_interval,
+                "sample interval [s] of simulate()'s histories (default 0: no samples)");
+  stepper_field("max_samples", &Stepper::max_samples, "largest number of samples a run may ask for (default 1e8)");
+  options.def_readwrite("check_stability_limit", &Options::check_stability_limit,
+                        "with rk4: refuse (ValueError) a fixed step above RK4's stability limit (default True)");
 
-  py::class_<Probe>(m, "Probe", "A point whose displacement simulate() records: point_shape(member, coordinate, direction)^T q.")
+  py::class_<Probe>(m, "Probe",
+                    "A point whose displacement simulate() records at every sample: point_shape(member, coordinate, "
+                    "direction) . q [m] (Moment: the rotation [rad]).")
       .def(py::init([](MemberId member, double coordinate, LoadDirection direction) {
              return Probe{member, coordinate, direction};
            }),
-           py::arg("member"), py::arg("coordinate"), py::arg("direction") = LoadDirection::GlobalX)
-      .def_readonly("member", &Probe::member)
-      .def_readonly("coordinate", &Probe::coordinate)
-      .def_readonly("direction", &Probe::direction);
-  py::class_<StatisticsWindow<double>>(m, "StatisticsWindow", "Window [t_start, t_end] and period of DamperStatistics.")
-      .def(py::init([](double t_start, double t_end, double period) {
-             return StatisticsWindow<double>{t_start, t_end, period};
-           }),
-           py::arg("t_start"), py::arg("t_end"), py::arg("period"));
-  py::enum_<DamperRegime>(m, "DamperRegime")
-      .value("Stick", DamperRegime::Stick)
-      .value("StickSlip", DamperRegime::StickSlip)
-      .value("GrossSlip", DamperRegime::GrossSlip)
-      .value("NotReached", DamperRegime::NotReached)
-      .value("IntermittentContact", DamperRegime::IntermittentContact);
-  m.def("regime_name", [](DamperRegime r) { return std::string(to_string(r)); }, py::arg("regime"));
+           py::arg("member"), py::arg("coordinate"), py::arg("direction") = LoadDirection::GlobalX,
+           "The point `coordinate` [m] along `member`, its displacement along `direction` (default GlobalX).")
+      .def_readonly("member", &Probe::member, "the member")
+      .def_readonly("coordinate", &Probe::coordinate, "position along the member [m]")
+      .def_readonly("direction", &Probe::direction, "the LoadDirection of the recorded displacement");
+  using Window = StatisticsWindow<double>;
+  py::class_<Window>(m, "StatisticsWindow", "The window [t_start, t_end] of simulate()'s per-damper statistics.")
+      .def(py::init([](double t_start, double t_end, double period) { return Window{t_start, t_end, period}; }),
+           py::arg("t_start"), py::arg("t_end"), py::arg("period"),
+           "The window [t_start, t_end] [s] (t_end > t_start) and the excitation period [s] > 0 the switches are "
+           "counted per.")
+      .def_readwrite("t_start", &Window::t_start, "start of the window [s]")
+      .def_readwrite("t_end", &Window::t_end, "end of the window [s]")
+      .def_readwrite("period", &Window::period, "excitation period the switches are counted per [s]");
+  py::enum_<DamperRegime>(m, "DamperRegime", "A damper's regime over a window (docs/blade_damper.md).")
+      .value("Stick", DamperRegime::Stick, "stuck at least 99.9 % of the time")
+      .value("StickSlip", DamperRegime::StickSlip, "in between")
+      .value("GrossSlip", DamperRegime::GrossSlip, "stuck less than 5 % of the time")
+      .value("NotReached", DamperRegime::NotReached, "the run did not reach the window")
+      .value("IntermittentContact", DamperRegime::IntermittentContact,
+             "separated from the member at least 1 % of the time");
+  m.def("regime_name", [](DamperRegime r) { return std::string(to_string(r)); }, py::arg("regime"),
+        "The name of a DamperRegime (\"stick\", \"stick-slip\", ...), as C++'s to_string.");
   using Stats = DamperWindowStatistics<double>;
-  py::class_<Stats>(m, "DamperWindowStatistics", "One damper's statistics over the window (DamperStatistics).")
-      .def_readonly("observed_time", &Stats::observed_time)
-      .def_readonly("stick_time", &Stats::stick_time)
-      .def_readonly("stick_fraction", &Stats::stick_fraction)
-      .def_readonly("switches", &Stats::switches)
-      .def_readonly("switches_per_period", &Stats::switches_per_period)
-      .def_readonly("separated_time", &Stats::separated_time)
-      .def_readonly("separated_fraction", &Stats::separated_fraction)
-      .def_readonly("bounces", &Stats::bounces)
-      .def_readonly("landings", &Stats::landings)
-      .def_readonly("wall_impacts", &Stats::wall_impacts)
-      .def_readonly("wall_rests", &Stats::wall_rests)
-      .def_readonly("wall_time", &Stats::wall_time)
-      .def_readonly("regime", &Stats::regime);
-  py::class_<StepperStats>(m, "StepperStats")
-      .def_readonly("accepted_steps", &StepperStats::accepted_steps)
-      .def_readonly("rejected_steps", &StepperStats::rejected_steps)
-      .def_readonly("rhs_evaluations", &StepperStats::rhs_evaluations)
-      .def_readonly("guard_evaluations", &StepperStats::guard_evaluations)
-      .def_readonly("jacobian_evaluations", &StepperStats::jacobian_evaluations)
-      .def_readonly("factorisations", &StepperStats::factorisations)
-      .def_readonly("events", &StepperStats::events)
-      .def_readonly("guard_sample_cuts", &StepperStats::guard_sample_cuts);
+  py::class_<Stats>(m, "DamperWindowStatistics", "One damper's statistics over the observed part of the window.")
+      .def_readonly("observed_time", &Stats::observed_time, "time of the window the run covered [s]")
+      .def_readonly("stick_time", &Stats::stick_time, "time stuck within it [s]")
+      .def_readonly("stick_fraction", &Stats::stick_fraction, "stick_time / observed_time (NaN when nothing observed)")
+      .def_readonly("switches", &Stats::switches, "contact-state changes in the window")
+      .def_readonly("switches_per_period", &Stats::switches_per_period, "switches * period / observed_time")
+      .def_readonly("separated_time", &Stats::separated_time, "time separated from the member within the window [s]")
+      .def_readonly("separated_fraction", &Stats::separated_fraction, "separated_time / observed_time")
+      .def_readonly("bounces", &Stats::bounces, "impacts after which the damper flew again")
+      .def_readonly("landings", &Stats::landings, "impacts after which it stayed in contact")
+      .def_readonly("wall_impacts", &Stats::wall_impacts, "impacts on a member-end wall")
+      .def_readonly("wall_rests", &Stats::wall_rests, "times the damper came to rest at a wall")
+      .def_readonly("wall_time", &Stats::wall_time, "time resting at a wall within the window [s]")
+      .def_readonly("regime", &Stats::regime, "the DamperRegime of these fractions");
+  py::class_<StepperStats>(m, "StepperStats", "The stepper's counters of a run.")
+      .def_readonly("accepted_steps", &StepperStats::accepted_steps, "accepted steps")
+      .def_readonly("rejected_steps", &StepperStats::rejected_steps, "rejected step attempts")
+      .def_readonly("rhs_evaluations", &StepperStats::rhs_evaluations, "right-hand-side evaluations")
+      .def_readonly("guard_evaluations", &StepperStats::guard_evaluations, "guard-vector evaluations")
+      .def_readonly("jacobian_evaluations", &StepperStats::jacobian_evaluations, "Jacobians formed (rosenbrock23)")
+      .def_readonly("factorisations", &StepperStats::factorisations, "LU factorisations (rosenbrock23)")
+      .def_readonly("events", &StepperStats::events, "located events (transitions)")
+      .def_readonly("guard_sample_cuts", &StepperStats::guard_sample_cuts,
+                    "steps cut back to an interior guard sample (guard_samples)");
   py::class_<Transition>(m, "Transition", "One transition of the run: every damper's state before and after.")
-      .def_readonly("t", &Transition::t)
-      .def_readonly("from_mode", &Transition::from)
-      .def_readonly("to_mode", &Transition::to);
+      .def_readonly("t", &Transition::t, "time of the transition [s]")
+      .def_readonly("from_mode", &Transition::from, "every damper's ContactState before (C++: from)")
+      .def_readonly("to_mode", &Transition::to, "every damper's ContactState after (C++: to)");
 
   py::class_<Run>(m, "Run", "The result and histories of simulate().")
-      .def_readonly("status", &Run::status)
-      .def_property_readonly("ok", [](const Run& r) { return r.status == Status::Success; })
-      .def_readonly("message", &Run::message)
-      .def_readonly("t", &Run::t, "time reached")
-      .def_readonly("x", &Run::x, "state at t")
+      .def_readonly("status", &Run::status, "how the run ended (Status)")
+      .def_property_readonly("ok", [](const Run& r) { return r.status == Status::Success; }, "status == Success")
+      .def_readonly("message", &Run::message, "why the run ended early (empty on success)")
+      .def_readonly("t", &Run::t, "time reached [s]")
+      .def_readonly("x", &Run::x, "state at t (numpy)")
       .def_readonly("mode", &Run::mode, "contact states at t")
-      .def_readonly("stats", &Run::stats)
-      .def_readonly("E0", &Run::E0, "mechanical energy at the (consistent) start")
+      .def_readonly("stats", &Run::stats, "the stepper's counters (StepperStats)")
+      .def_readonly("E0", &Run::E0, "mechanical energy at the (consistent) start [J]")
       .def_property_readonly(
           "energy",
           [](const Run& r) -> py::object {
@@ -898,29 +1170,35 @@ void bind_simulate(py::module_& m) {
           },
           "the energy audit at t: an EnergyBalance (a ContactSystem's: ContactSystem.EnergyBalance), None without "
           "the audit")
-      .def_readonly("transitions", &Run::transitions)
-      .def_readonly("damper_statistics", &Run::statistics)
-      .def_property_readonly("sample_t", [](const Run& r) { return py::array_t<double>(py::cast(r.sample_t)); })
+      .def_readonly("transitions", &Run::transitions, "the run's transitions (Transition)")
+      .def_readonly("damper_statistics", &Run::statistics,
+                    "per damper: DamperWindowStatistics over the `statistics` window (empty without one)")
+      .def_property_readonly("sample_t", [](const Run& r) { return py::array_t<double>(py::cast(r.sample_t)); },
+                             "sample times [s] (numpy, k)")
       .def_property_readonly("states",
                              [](const Run& r) {
                                const Index n = r.samples.empty() ? r.x.size() : r.samples.front().size();
                                return stack<double>(r.samples, n, [](const State& s, Index c) { return s[c]; });
-                             })
+                             },
+                             "the state at each sample (numpy, k x state_size(); empty without record_states)")
       .def_property_readonly("sample_modes",
                              [](const Run& r) {
                                return stack<std::int8_t>(r.sample_modes, static_cast<Index>(r.mode.size()),
                                                          [](const std::vector<ContactState>& s, Index c) {
                                                            return static_cast<std::int8_t>(s[static_cast<std::size_t>(c)]);
                                                          });
-                             })
+                             },
+                             "the contact states at each sample as ints of ContactState (numpy, k x D)")
       .def_property_readonly("probes",
                              [](const Run& r) {
                                const Index n = r.probe_values.empty() ? 0 : static_cast<Index>(r.probe_values[0].size());
                                return stack<double>(r.probe_values, n, [](const std::vector<double>& s, Index c) {
                                  return s[static_cast<std::size_t>(c)];
                                });
-                             })
-      .def_property_readonly("force_t", [](const Run& r) { return py::array_t<double>(py::cast(r.force_t)); })
+                             },
+                             "each probe's displacement at each sample [m] (numpy, k x number of probes)")
+      .def_property_readonly("force_t", [](const Run& r) { return py::array_t<double>(py::cast(r.force_t)); },
+                             "the sample times from evaluate_from on [s] (numpy)")
       .def_property_readonly("forces", [](const Run& r) {
         py::dict d;
         const Index D = static_cast<Index>(r.mode.size());
@@ -930,8 +1208,8 @@ void bind_simulate(py::module_& m) {
           d["y"] = stack<double>(r.y, D, get), d["X"] = stack<double>(r.X, D, get);
         }
         return d;
-      }, "per sample from evaluate_from on, one column per damper or contact: N, f, V (a ContactSystem's sliding "
-         "velocity v) and, for a FrictionDampedSystem, y and X");
+      }, "per sample from evaluate_from on, one column per damper or contact: N [N], f [N], V [m/s] (a "
+         "ContactSystem's sliding velocity v) and, for a FrictionDampedSystem, y [m] and X [m]");
 
   def_simulate<PySystem>(
       m,
@@ -949,27 +1227,30 @@ void bind_simulate(py::module_& m) {
 void bind_trade_study(py::module_& m) {
   using Row = TradeRow<double>;
   py::class_<Row>(m, "TradeRow", "One variant's cost and error against the reference.")
-      .def_readonly("name", &Row::name)
-      .def_readonly("started", &Row::started)
-      .def_readonly("status", &Row::status)
-      .def_readonly("message", &Row::message)
-      .def_readonly("t_reached", &Row::t_reached)
-      .def_readonly("cpu_seconds", &Row::cpu_seconds)
-      .def_readonly("rhs_evaluations", &Row::rhs_evaluations)
-      .def_readonly("events", &Row::events)
-      .def_readonly("output_error_max", &Row::output_error_max)
-      .def_readonly("output_error_rms", &Row::output_error_rms)
-      .def_readonly("switch_time_error", &Row::switch_time_error)
-      .def_readonly("missed_switches", &Row::missed_switches)
-      .def_readonly("extra_switches", &Row::extra_switches)
-      .def_readonly("energy_residual", &Row::energy_residual)
-      .def_property_readonly("ok", &Row::ok);
+      .def_readonly("name", &Row::name, "the variant's name")
+      .def_readonly("started", &Row::started, "False: building or starting the run raised (see message)")
+      .def_readonly("status", &Row::status, "how the run ended (Status; meaningful when started)")
+      .def_readonly("message", &Row::message, "the run's message, or the exception's")
+      .def_readonly("t_reached", &Row::t_reached, "time the run reached [s]")
+      .def_readonly("cpu_seconds", &Row::cpu_seconds, "median CPU time of the run over the repeats [s]")
+      .def_readonly("rhs_evaluations", &Row::rhs_evaluations, "right-hand-side evaluations of the last repeat")
+      .def_readonly("events", &Row::events, "events (transitions) of the last repeat")
+      .def_readonly("output_error_max", &Row::output_error_max,
+                    "max_k |y_k - y_ref,k| / max_k |y_ref,k| over the common sample grid")
+      .def_readonly("output_error_rms", &Row::output_error_rms, "sqrt(mean_k (y_k - y_ref,k)^2) / max_k |y_ref,k|")
+      .def_readonly("switch_time_error", &Row::switch_time_error, "largest |t - t_ref| over the matched switches [s]")
+      .def_readonly("missed_switches", &Row::missed_switches, "reference switches without a partner in the run")
+      .def_readonly("extra_switches", &Row::extra_switches, "switches of the run without a partner in the reference")
+      .def_readonly("energy_residual", &Row::energy_residual,
+                    "the energy audit's relative closing error at the end (NaN without the audit)")
+      .def_property_readonly("ok", &Row::ok, "started and status == Success");
   using Result = TradeStudyResult<double>;
-  py::class_<Result>(m, "TradeStudyResult")
-      .def_readonly("reference", &Result::reference)
-      .def_readonly("validation", &Result::validation)
-      .def_readonly("validation_method", &Result::validation_method)
-      .def_readonly("rows", &Result::rows);
+  py::class_<Result>(m, "TradeStudyResult", "What trade_study() returns: the reference, its validation, the rows.")
+      .def_readonly("reference", &Result::reference, "the reference run's TradeRow (errors 0 by definition)")
+      .def_readonly("validation", &Result::validation,
+                    "the tightened rerun of the reference compared with it: the bound of the reference's own error")
+      .def_readonly("validation_method", &Result::validation_method, "how the reference was validated, in words")
+      .def_readonly("rows", &Result::rows, "one TradeRow per variant, in order (empty if the reference failed)");
   using Variant = TradeVariant<System>;
   py::class_<Variant>(m, "TradeVariant", "A name, a setup() returning a FrictionDampedSystem, and RunOptions.")
       .def(py::init([](std::string name, py::object setup, const RunOptions<double>& run) {
@@ -989,8 +1270,10 @@ void bind_trade_study(py::module_& m) {
              };
              return v;
            }),
-           py::arg("name"), py::arg("setup"), py::arg("run") = RunOptions<double>{})
-      .def_readonly("name", &Variant::name);
+           py::arg("name"), py::arg("setup"), py::arg("run") = RunOptions<double>{},
+           "A variant `name` whose setup() returns a FrictionDampedSystem (started from rest made consistent at "
+           "t = 0), run with `run` (default RunOptions()).")
+      .def_readonly("name", &Variant::name, "the variant's name");
   m.def(
       "trade_study",
       [](const Variant& reference, const std::vector<Variant>& variants, double t_end, const py::object& output,
@@ -1276,32 +1559,36 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
 }
 
 void bind_steady_state(py::module_& m) {
-  py::enum_<ShootingStatus>(m, "ShootingStatus")
-      .value("Converged", ShootingStatus::Converged)
-      .value("NoConvergence", ShootingStatus::NoConvergence)
-      .value("ModeNotPeriodic", ShootingStatus::ModeNotPeriodic)
-      .value("IntegrationFailed", ShootingStatus::IntegrationFailed)
-      .value("SingularJacobian", ShootingStatus::SingularJacobian);
-  py::enum_<Instability>(m, "Instability")
-      .value("Stable", Instability::None)  // "None" is a Python keyword
-      .value("Fold", Instability::Fold)
-      .value("PeriodDoubling", Instability::PeriodDoubling)
-      .value("NeimarkSacker", Instability::NeimarkSacker);
-  py::class_<PyOrbit>(m, "PeriodicOrbit", "A periodic orbit found by shooting (docs/steady_state.md).")
-      .def_readonly("status", &PyOrbit::status)
-      .def_property_readonly("ok", [](const PyOrbit& o) { return o.status == ShootingStatus::Converged; })
-      .def_readonly("message", &PyOrbit::message)
-      .def_readonly("t0", &PyOrbit::t0)
-      .def_readonly("period", &PyOrbit::period)
+  py::enum_<ShootingStatus>(m, "ShootingStatus", "How find_periodic_orbit ended (PeriodicOrbit.status).")
+      .value("Converged", ShootingStatus::Converged, "a periodic orbit to the tolerance, its mode sequence closes")
+      .value("NoConvergence", ShootingStatus::NoConvergence, "Newton did not reach the tolerance")
+      .value("ModeNotPeriodic", ShootingStatus::ModeNotPeriodic, "x(T) = x(0) but the mode at t0 + T is not the start's")
+      .value("IntegrationFailed", ShootingStatus::IntegrationFailed, "a run ended early (see the message)")
+      .value("SingularJacobian", ShootingStatus::SingularJacobian, "the Newton matrix is singular");
+  py::enum_<Instability>(m, "Instability", "How a periodic orbit loses stability (its Floquet multipliers).")
+      .value("Stable", Instability::None,  // "None" is a Python keyword
+             "all multipliers inside the unit circle (C++: None, a Python keyword)")
+      .value("Fold", Instability::Fold, "a real multiplier > 1 (fold)")
+      .value("PeriodDoubling", Instability::PeriodDoubling, "a real multiplier < -1 (period doubling)")
+      .value("NeimarkSacker", Instability::NeimarkSacker, "a complex pair outside (Neimark-Sacker, torus)");
+  py::class_<PyOrbit>(m, "PeriodicOrbit",
+                      "A periodic orbit found by shooting (docs/steady_state.md); C++'s PeriodicOrbit with its "
+                      "floquet fields (multipliers, max_modulus, stable, instability) flattened.")
+      .def_readonly("status", &PyOrbit::status, "how the shooting ended (ShootingStatus)")
+      .def_property_readonly("ok", [](const PyOrbit& o) { return o.status == ShootingStatus::Converged; },
+                             "status == Converged")
+      .def_readonly("message", &PyOrbit::message, "why it failed (empty when Converged)")
+      .def_readonly("t0", &PyOrbit::t0, "time of the section [s]")
+      .def_readonly("period", &PyOrbit::period, "the period T [s]")
       .def_readonly("residual", &PyOrbit::residual, "max |x_i(T) - x_i(0)| over the periodic components")
       .def_readonly("iterations", &PyOrbit::iterations, "orbit runs made")
       .def_readonly("x0", &PyOrbit::x0, "the orbit's state at t0")
       .def_readonly("mode", &PyOrbit::mode, "contact states at t0")
       .def_readonly("monodromy", &PyOrbit::monodromy, "dx_P(T)/dx_P(0) over the periodic components P")
-      .def_readonly("multipliers", &PyOrbit::multipliers, "Floquet multipliers")
-      .def_readonly("max_modulus", &PyOrbit::max_modulus)
-      .def_readonly("stable", &PyOrbit::stable)
-      .def_readonly("instability", &PyOrbit::instability)
+      .def_readonly("multipliers", &PyOrbit::multipliers, "Floquet multipliers (numpy, complex; C++: floquet.multipliers)")
+      .def_readonly("max_modulus", &PyOrbit::max_modulus, "the largest |multiplier|")
+      .def_readonly("stable", &PyOrbit::stable, "every multiplier inside the unit circle")
+      .def_readonly("instability", &PyOrbit::instability, "how it is unstable (Instability; Stable when stable)")
       .def_readonly("amplitudes", &PyOrbit::amplitudes, "max |x_i| over the orbit (the periodic components)")
       .def_readonly("events", &PyOrbit::events, "the contact switches of one period")
       .def_readonly("stick_fractions", &PyOrbit::stick_fractions, "per damper: time stuck / T")
@@ -1318,13 +1605,13 @@ void bind_steady_state(py::module_& m) {
       "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
       "2n), not the audit integrals. stick_fractions and switches are per contact.");
 
-  py::enum_<ContinuationStatus>(m, "ContinuationStatus")
-      .value("Completed", ContinuationStatus::Completed)
-      .value("MaxPoints", ContinuationStatus::MaxPoints)
-      .value("StepTooSmall", ContinuationStatus::StepTooSmall)
-      .value("StartFailed", ContinuationStatus::StartFailed)
-      .value("Stopped", ContinuationStatus::Stopped)
-      .value("Interrupted", ContinuationStatus::Interrupted);
+  py::enum_<ContinuationStatus>(m, "ContinuationStatus", "How continue_orbits ended (Branch.status).")
+      .value("Completed", ContinuationStatus::Completed, "the branch left the parameter range")
+      .value("MaxPoints", ContinuationStatus::MaxPoints, "max_points reached inside the range")
+      .value("StepTooSmall", ContinuationStatus::StepTooSmall, "the corrector failed down to min_step")
+      .value("StartFailed", ContinuationStatus::StartFailed, "no orbit at the start parameter")
+      .value("Stopped", ContinuationStatus::Stopped, "a stop rule ended the branch (parts > 1: a part joined the next)")
+      .value("Interrupted", ContinuationStatus::Interrupted, "Ctrl-C stopped the run");
   py::class_<PyContinuationPoint>(m, "ContinuationPoint", "One point of a branch (docs/steady_state.md).")
       .def_readonly("parameter", &PyContinuationPoint::parameter, "the parameter p")
       .def_readonly("step", &PyContinuationPoint::step, "the arclength step that reached it (0 at the start)")
@@ -1334,20 +1621,23 @@ void bind_steady_state(py::module_& m) {
   py::class_<PyContinuationPart>(m, "BranchPart", "One part of continue_orbits(parts > 1) (SplitContinuation).")
       .def_readonly("start_parameter", &PyContinuationPart::start_parameter, "the parameter of its start orbit")
       .def_readonly("status", &PyContinuationPart::status, "how the part's run ended (Stopped: it joined the next)")
-      .def_readonly("message", &PyContinuationPart::message)
-      .def_readonly("points", &PyContinuationPart::points, "points the part computed")
+      .def_readonly("message", &PyContinuationPart::message, "why it ended (empty when Completed)")
+      .def_readonly("points", &PyContinuationPart::points,
+                    "the number of points the part computed (an int, as C++'s ContinuationPart::points; the "
+                    "points themselves are in Branch.points)")
       .def_readonly("kept", &PyContinuationPart::kept, "of them in the joined branch")
       .def_readonly("joined", &PyContinuationPart::joined, "its branch ran into the next part's start")
       .def_readonly("cpu_seconds", &PyContinuationPart::cpu_seconds, "CPU time of the part's thread")
       .def_readonly("dropped", &PyContinuationPart::dropped,
                     "its own points when the joined branch does not hold them (an earlier part did not join)");
-  py::class_<PyContinuation>(m, "Branch", "A branch computed by continue_orbits.")
-      .def_readonly("status", &PyContinuation::status)
+  py::class_<PyContinuation>(m, "Branch", "A branch computed by continue_orbits (C++: ContinuationResult).")
+      .def_readonly("status", &PyContinuation::status, "how the branch ended (ContinuationStatus)")
       .def_readonly("message", &PyContinuation::message, "why it ended early (empty when Completed)")
-      .def_readonly("points", &PyContinuation::points)
+      .def_readonly("points", &PyContinuation::points, "the branch's ContinuationPoints, in branch order")
       .def_readonly("parts", &PyContinuation::parts, "per part (parts > 1): what it did; empty for one part")
       .def_property_readonly("completed",
-                             [](const PyContinuation& c) { return c.status == ContinuationStatus::Completed; })
+                             [](const PyContinuation& c) { return c.status == ContinuationStatus::Completed; },
+                             "status == Completed")
       .def_property_readonly(
           "parameters",
           [](const PyContinuation& c) {
@@ -1488,13 +1778,14 @@ void bind_steady_state(py::module_& m) {
       "callable ends the run and propagates. The GIL is released during the run and re-acquired for each "
       "callable; Ctrl-C stops the call (KeyboardInterrupt).");
 
-  py::enum_<PoincareStatus>(m, "PoincareStatus")
-      .value("Periodic", PoincareStatus::Periodic)
-      .value("NotPeriodic", PoincareStatus::NotPeriodic)
-      .value("IntegrationFailed", PoincareStatus::IntegrationFailed);
+  py::enum_<PoincareStatus>(m, "PoincareStatus", "What poincare_sections found (PoincareSections.status).")
+      .value("Periodic", PoincareStatus::Periodic, "the sections repeat with period k = period")
+      .value("NotPeriodic", PoincareStatus::NotPeriodic, "no k <= max_period: quasi-periodic, chaotic or transient")
+      .value("IntegrationFailed", PoincareStatus::IntegrationFailed, "a run failed (see the message)");
   py::class_<PyPoincare>(m, "PoincareSections", "Poincaré sections of a forced response (docs/steady_state.md).")
-      .def_readonly("status", &PyPoincare::status)
-      .def_property_readonly("periodic", [](const PyPoincare& p) { return p.status == PoincareStatus::Periodic; })
+      .def_readonly("status", &PyPoincare::status, "what was found (PoincareStatus)")
+      .def_property_readonly("periodic", [](const PyPoincare& p) { return p.status == PoincareStatus::Periodic; },
+                             "status == Periodic")
       .def_readonly("message", &PyPoincare::message, "why a run failed (empty otherwise)")
       .def_readonly("period", &PyPoincare::period, "k of a period-k response, 0 when not periodic")
       .def_readonly("recurrence", &PyPoincare::recurrence,

@@ -79,7 +79,7 @@ def den_hartog_scene():
     force F0 cos(w t): with x = phi q the tip is the oscillator m = 1/phi^2, k = omega^2/phi^2."""
     frame, member = cantilever()
     basis = ss.compute_modes(frame, num_modes=1)
-    wn = float(basis.omega[0])
+    wn = float(basis.omega()[0])
     w, F0, mu, N = 0.6 * wn, 20.0, 0.3, 15.0
     slider = ss.PointContact.grounded(ss.StructurePoint(member, LENGTH), ss.PlaneDirection.global_x(),
                                       ss.CoulombLaw(mu, mu), N)
@@ -123,7 +123,7 @@ def test_one_mode_with_a_tip_slider_follows_den_hartogs_orbit():
 def test_stick_slip_run_closes_the_energy_balance():
     frame, member = cantilever()
     basis = ss.compute_modes(frame, num_modes=6).with_modal_damping(np.full(6, 0.02))
-    W = 0.7 * float(basis.omega[0])
+    W = 0.7 * float(basis.omega()[0])
     sliders = [
         ss.PointContact.grounded(ss.StructurePoint(member, LENGTH / 2), ss.PlaneDirection.global_x(),
                                  ss.CoulombLaw(0.35, 0.3), 3.0),

@@ -31,7 +31,7 @@ def receptance(psi, basis, F, W):
     """Closed form: q_j'' + 2 zeta w_j q_j' + w_j^2 q_j = psi_j F sin(W t) has the orbit
     q_j = Im(a_j e^{iWt}), a_j = psi_j F / (w_j^2 - W^2 + 2i zeta w_j W): the state (q, q') at
     t0 = 0 and the amplitudes (|a_j|, W |a_j|)."""
-    w = basis.omega
+    w = basis.omega()
     a = psi * F / (w ** 2 - W ** 2 + 2j * ZETA * w * W)
     return np.concatenate([np.imag(a), np.imag(1j * W * a)]), np.concatenate([np.abs(a), W * np.abs(a)])
 
@@ -58,7 +58,7 @@ def test_frequency_branch_is_the_closed_form_receptance(chord_iterations):
     assert p[0] == 2.3 and np.all(np.diff(p) > 0) and p[-1] > 2.75  # no fold: p grows to near p_end
     assert len(p) >= 6 and p[p < 2.608].size and p[p > 2.608].size  # both sides of the resonance
     assert [pt.parameter for pt in seen] == list(p)  # on_point saw every point, in order
-    w = basis.omega
+    w = basis.omega()
     lam = -ZETA * w + 1j * w * math.sqrt(1 - ZETA ** 2)
     for pt in branch.points:
         W = pt.parameter * UNIT
@@ -156,7 +156,7 @@ def test_bad_arguments_and_callable_results_are_named():
     # ValueError for a wrong value or size (not a later C++ check blaming another option).
     at, basis, psi = scene()
     system = at(1.0, 230.0)
-    n = system.state_size
+    n = system.state_size()
     P = lambda s, p: at(1.0, p * UNIT)  # noqa: E731
     T = lambda p: 2 * math.pi / (p * UNIT)  # noqa: E731
     run = lambda **kw: ss.continue_orbits(system, P, kw.pop("p0", 2.3), kw.pop("p_end", 2.9),  # noqa: E731
@@ -261,7 +261,7 @@ def test_a_branch_in_two_parts_joins_and_is_the_closed_form_receptance():
 
 def state_at(psi, basis, F, W, t):
     """Closed form of the steady state (q, q') at time t under F sin(W t) (see receptance)."""
-    w = basis.omega
+    w = basis.omega()
     a = psi * F / (w ** 2 - W ** 2 + 2j * ZETA * w * W) * np.exp(1j * W * t)
     return np.concatenate([np.imag(a), np.imag(1j * W * a)])
 

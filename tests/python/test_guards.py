@@ -157,7 +157,7 @@ def test_unbounded_requests_are_refused_naming_the_limit():
     system, m = cantilever_system(lambda m: ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, 1.0, 200.0))
     T = 2 * math.pi / 200.0
     # Sections of state_size doubles, kept twice (1 GiB at most): the limit is stated.
-    limit = (1 << 30) // (16 * system.state_size)
+    limit = (1 << 30) // (16 * system.state_size())
     with pytest.raises(ValueError, match=f"record_periods must be <= {limit} .*1 GiB"):
         ss.poincare_sections(system, T, record_periods=2**31 - 1)
     with pytest.raises(ValueError, match="max_period must be <= record_periods / 2 = 16"):
@@ -174,7 +174,7 @@ def test_run_inputs_are_named_before_the_first_evaluation(kind):
     opts = ss.RunOptions("dopri5")
     with pytest.raises(ValueError, match="t0"):
         ss.simulate(system, 0.01, opts, t0=math.nan)
-    x0 = np.zeros(system.state_size)
+    x0 = np.zeros(system.state_size())
     x0[1] = math.inf
     with pytest.raises(ValueError, match=r"x0\[1\]"):
         ss.simulate(system, 0.01, opts, x0=x0)

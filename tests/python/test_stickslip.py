@@ -59,7 +59,7 @@ def test_blade_scene_equals_the_cpp_example(example_run):
     for i in range(2):
         for name in ("N", "f", "V", "y", "X"):
             close_to_printed(run.forces[name][:, i], h[f"{name}{i + 1}"].astype(float))
-        close_to_printed(run.states[last, sys.x_offset + i], h[f"x{i + 1}"].astype(float))
+        close_to_printed(run.states[last, sys.x_offset() + i], h[f"x{i + 1}"].astype(float))
         np.testing.assert_array_equal(run.sample_modes[last, i], h[f"state{i + 1}"].astype(int))
     tip = read_csv(out / "tip_N0_2.7.csv")
     index = np.searchsorted(run.sample_t, tip["t"].astype(float) - 1e-9)
@@ -142,7 +142,7 @@ def test_every_integrator_matches_the_closed_form_forced_response(integrator, kw
     F, W = 1.0, 200.0
     system = ss.FrictionDampedSystem(f, basis, [], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F, W)])
     psi = system.point_shape(m, 0.1, ss.LoadDirection.GlobalX)
-    w = basis.omega
+    w = basis.omega()
     run = ss.simulate(system, 0.1, ss.RunOptions(integrator, output_interval=1e-3, **kw))
     assert run.ok, run.message
     t = run.sample_t[:, None]
@@ -275,7 +275,7 @@ def test_bad_input_raises_value_error_naming_the_parameter():
     system = ss.FrictionDampedSystem(f, basis, [])
     with pytest.raises(ValueError, match="fixed_step is above RungeKutta4's stability limit"):
         ss.simulate(system, 0.1, ss.RunOptions("rk4", fixed_step=1e-2))
-    with pytest.raises(ValueError, match=f"simulate: x0 has size 3, expected state_size\\(\\) = {system.state_size}"):
+    with pytest.raises(ValueError, match=f"simulate: x0 has size 3, expected state_size\\(\\) = {system.state_size()}"):
         ss.simulate(system, 0.1, x0=np.zeros(3))
     with pytest.raises(ValueError, match="window.t_end must be > window.t_start"):
         ss.simulate(system, 0.1, statistics=ss.StatisticsWindow(1.0, 0.5, 0.1))
@@ -325,7 +325,7 @@ def test_periodic_orbit_of_a_damped_linear_scene_is_the_closed_form():
     basis = basis.with_modal_damping(np.full(len(basis), zeta))
     system = ss.FrictionDampedSystem(f, basis, [], [ss.PointLoad.harmonic(m, 0.1, ss.LoadDirection.GlobalX, F, W)])
     psi = system.point_shape(m, 0.1, ss.LoadDirection.GlobalX)
-    w = basis.omega
+    w = basis.omega()
     T = 2 * math.pi / W
     orbit = ss.find_periodic_orbit(system, T)
     assert orbit.ok, orbit.message
@@ -350,7 +350,7 @@ def test_periodic_orbit_rejects_a_bad_request_naming_it():
         ss.find_periodic_orbit(system, 0.01, monodromy="guess")
     with pytest.raises(ValueError, match="period"):
         ss.find_periodic_orbit(system, -1.0)
-    n = system.state_size
+    n = system.state_size()
     with pytest.raises(ValueError, match=f"find_periodic_orbit: x0 has size 3, expected state_size\\(\\) = {n}"):
         ss.find_periodic_orbit(system, 0.01, x0=np.zeros(3))
     damped = ss.FrictionDampedSystem(f, basis, [ss.PointDamper(m, 0.15, 0.01, 5e3, 5.0, ss.CoulombLaw(0.35, 0.3))])
@@ -372,10 +372,10 @@ def test_a_damper_without_preload_that_may_separate_starts_in_flight():
     d.separation = ss.Separation.Separate
     d.restitution = 0.5
     sys = ss.FrictionDampedSystem(f, basis, [d])
-    n = sys.num_modes
-    assert sys.num_separable == 1
-    assert sys.flight_offset == 2 * n + 3  # q, q', x, x', X
-    assert sys.energy_offset == 2 * n + 5 and sys.state_size == 2 * n + 10
+    n = sys.num_modes()
+    assert sys.num_separable() == 1
+    assert sys.flight_offset() == 2 * n + 3  # q, q', x, x', X
+    assert sys.energy_offset() == 2 * n + 5 and sys.state_size() == 2 * n + 10
     ok, mode, x = sys.make_consistent(sys.requested_mode(), 0.0, sys.initial_state())
     assert ok and mode == [ss.ContactState.Separated]
     run = ss.simulate(sys, 0.01, ss.RunOptions("dopri5"))
@@ -389,9 +389,9 @@ def test_member_end_choices_are_bound():
     d.finish_end = ss.MemberEnd.Wall
     d.wall_restitution = 0.5
     sys = ss.FrictionDampedSystem(f, basis, [d])
-    assert sys.dampers[0].finish_end == ss.MemberEnd.Wall
-    n = sys.num_modes
-    assert sys.energy_offset == 2 * n + 3 and sys.state_size == 2 * n + 8  # a wall adds D_imp
+    assert sys.dampers()[0].finish_end == ss.MemberEnd.Wall
+    n = sys.num_modes()
+    assert sys.energy_offset() == 2 * n + 3 and sys.state_size() == 2 * n + 8  # a wall adds D_imp
     d.wall_restitution = 1.5
     with pytest.raises(ValueError, match="wall_restitution"):
         ss.FrictionDampedSystem(f, basis, [d])
