@@ -34,13 +34,15 @@ constexpr double kBlade = 0.2, kPlatform = 0.04, kPitch = 0.05;
 /// elements, the blade from the clamped root (0, 0) to the platform's middle in four. Sector
 /// numbering: node 0 left wing, 1 right wing, 2 platform middle (the blade tip), 3 root; member
 /// 0 platform, member 1 blade.
-SectorAttachments build_sector(FrameModel<double>& f, const Vector2& o) {
+SectorAttachments build_sector(FrameModel<double>& f, const Vector2& o, double stiffness_factor = 1.0) {
+  SectionProperties<double> section = kSection;
+  section.E *= stiffness_factor;
   const NodeId left = f.add_node(o.x() - kPlatform / 2, o.y() + kBlade);
   const NodeId right = f.add_node(o.x() + kPlatform / 2, o.y() + kBlade);
-  const MemberId platform = f.add_member(left, right, kSection, 2);
+  const MemberId platform = f.add_member(left, right, section, 2);
   const NodeId mid = f.member(platform).nodes[1];
   const NodeId root = f.add_node(o.x(), o.y());
-  f.add_member(root, mid, kSection, 4);
+  f.add_member(root, mid, section, 4);
   f.clamp(root);
   return {left, right};
 }
@@ -48,7 +50,9 @@ constexpr NodeId kTip = 2;
 constexpr MemberId kPlatformMember = 0, kBladeMember = 1;
 
 Disk::SectorBuilder builder() {
-  return [](FrameModel<double>& f, const SectorPlacement<double>& p) { return build_sector(f, p.origin); };
+  return [](FrameModel<double>& f, const SectorPlacement<double>& p) {
+    return build_sector(f, p.origin, p.stiffness_factor);
+  };
 }
 
 /// Springs between neighbouring platform wings of the order of the blade's tip stiffness
@@ -352,6 +356,10 @@ TEST(DiskInputs, BadInputIsRefusedNamingTheParameter) {
   expect_refused([&] { engine_order_loads(disk, kBladeMember, 0.1, LoadDirection::GlobalX, std::nan(""), 300.0, 1); },
                  "amplitude");
   expect_refused([&] { disk.node(4, 0); }, "sector index k");
+  expect_refused([] { Disk(5, kPitch, builder(), springs(), std::vector<double>(3, 0.0)); }, "mistuning.size()");
+  expect_refused([] { Disk(3, kPitch, builder(), springs(), {0.0, 0.1, -1.0}); }, "mistuning[2]");
+  expect_refused([] { compute_cyclic_modes(Disk(3, kPitch, builder(), springs(), {0.0, 0.1, 0.0})); }, "mistuning");
+  expect_refused([] { draw_mistuning<double>(3, -0.1, 1); }, "sigma");
   CyclicModalOptions<double> o;
   o.num_modes = 0;
   expect_refused([&] { compute_cyclic_modes(disk, o); }, "options.num_modes");
@@ -363,6 +371,53 @@ TEST(DiskInputs, BadInputIsRefusedNamingTheParameter) {
     neighbour_joints(disk, {kPlatformMember, kPlatform}, {kPlatformMember, 0.0}, PlaneDirection<double>::global_x(),
                      CoulombLaw<double>(0.3, 0.3), 0.0);
   }, "normal");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mistuning
+
+TEST(DiskMistuning, ZeroDeltasGiveTheTunedDiskAndEachDeltaScalesItsSector) {
+  const Eigen::Index N = 5;
+  const Disk tuned(N, kPitch, builder(), springs());
+  const Disk zero(N, kPitch, builder(), springs(), std::vector<double>(N, 0.0));
+  EXPECT_TRUE(zero.is_tuned());
+  const auto t = tuned.assemble(), z = zero.assemble();
+  EXPECT_EQ((Matrix(t.stiffness) - Matrix(z.stiffness)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((Matrix(t.mass) - Matrix(z.mass)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE(max_relative_difference(cyclic_spectrum(compute_cyclic_modes(zero, all_modes())),
+                                    cyclic_spectrum(compute_cyclic_modes(tuned, all_modes()))), 0.0);
+
+  const auto sample = draw_mistuning<double>(N, 0.05, 42);
+  const Disk mistuned(N, kPitch, builder(), springs(), sample.deltas);
+  EXPECT_FALSE(mistuned.is_tuned());
+  // Element stiffness is linear in E and the sectors' own K is block diagonal (the coupling is
+  // the same in both disks): K_mistuned - K_tuned = diag(delta of each DOF's sector) K_sectors,
+  // to the round-off of the products.
+  const Matrix sectors(tuned.frame().assemble().stiffness);
+  Matrix expected = sectors;
+  for (Eigen::Index i = 0; i < expected.rows(); ++i) {
+    const auto node = tuned.annulus_dofs().node_dof(i).first;
+    expected.row(i) *= sample.deltas[static_cast<std::size_t>(node / tuned.nodes_per_sector())];
+  }
+  const auto m = mistuned.assemble();
+  EXPECT_LE((Matrix(m.stiffness) - Matrix(t.stiffness) - expected).cwiseAbs().maxCoeff(),
+            1e-13 * sectors.cwiseAbs().maxCoeff());
+  EXPECT_EQ((Matrix(m.mass) - Matrix(t.mass)).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(DiskMistuning, DrawsAreReproducibleFromTheSeedWithTheRequestedScatter) {
+  const auto a = draw_mistuning<double>(7, 0.03, 2024), b = draw_mistuning<double>(7, 0.03, 2024);
+  const auto c = draw_mistuning<double>(7, 0.03, 2025);
+  EXPECT_EQ(a.deltas, b.deltas);
+  EXPECT_NE(a.deltas, c.deltas);
+  EXPECT_EQ(a.seed, 2024u);
+  // 20000 draws: mean and standard deviation within four standard errors (sigma / sqrt(n) and
+  // sigma / sqrt(2 n)) of 0 and sigma; the seed is fixed, so this is deterministic.
+  const auto big = draw_mistuning<double>(20000, 0.1, 7);
+  const Eigen::Map<const Vector> d(big.deltas.data(), 20000);
+  const double mean = d.mean(), sd = std::sqrt((d.array() - mean).square().sum() / double(d.size() - 1));
+  EXPECT_LE(std::abs(mean), 4 * 0.1 / std::sqrt(20000.0));
+  EXPECT_LE(std::abs(sd - 0.1), 4 * 0.1 / std::sqrt(40000.0));
 }
 
 // ---------------------------------------------------------------------------------------------

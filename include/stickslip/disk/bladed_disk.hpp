@@ -34,6 +34,9 @@ template <class Scalar>
 struct SectorPlacement {
   Eigen::Index index = 0;                            ///< sector number k, 0 ... N - 1
   Eigen::Matrix<Scalar, 2, 1> origin{Scalar(0), Scalar(0)};  ///< (k pitch, 0) [m]
+  /// Mistuning: the builder multiplies the Young's modulus of the sector's members by this,
+  /// E_k = E (1 + delta_k) (1 for a tuned disk and for the reference sector).
+  Scalar stiffness_factor = Scalar(1);
 };
 
 /// The attachment nodes a sector builder reports: the coupling ties `right` of sector k to
@@ -82,13 +85,17 @@ class BladedDisk {
   /// \param builder the sector (see SectorBuilder), called once for sector_frame() and once per
   ///        sector
   /// \param coupling springs and/or ring element between right(k) and left(k + 1)
+  /// \param mistuning delta_k per sector (empty: tuned), passed to the builder as
+  ///        SectorPlacement::stiffness_factor = 1 + delta_k (draw_mistuning draws them)
   /// \throws std::invalid_argument naming the parameter: num_sectors < 2, pitch not finite or
   ///         not above the sector's extent, an empty builder, missing or foreign attachment
   ///         nodes (attachments.left / attachments.right), a builder that builds a different
   ///         sector at another call (sector: node count, member count, node position, support),
-  ///         an invalid coupling; the builder's own exceptions propagate.
-  BladedDisk(Index num_sectors, Scalar pitch, SectorBuilder builder, SectorCoupling<Scalar> coupling)
-      : num_sectors_(num_sectors), pitch_(pitch), coupling_(std::move(coupling)) {
+  ///         an invalid coupling, mistuning of another size than N or with a delta_k not
+  ///         finite and > -1 (mistuning[k]); the builder's own exceptions propagate.
+  BladedDisk(Index num_sectors, Scalar pitch, SectorBuilder builder, SectorCoupling<Scalar> coupling,
+             std::vector<Scalar> mistuning = {})
+      : num_sectors_(num_sectors), pitch_(pitch), coupling_(std::move(coupling)), mistuning_(std::move(mistuning)) {
     static const char* where = "BladedDisk";
     if (num_sectors < 2) detail::throw_invalid(where, "num_sectors must be >= 2", num_sectors);
     if (num_sectors > FrameModel<Scalar>::max_nodes)
@@ -96,8 +103,15 @@ class BladedDisk {
     detail::require_positive(where, "pitch", pitch);
     if (!builder) throw std::invalid_argument(std::string(where) + ": builder must be callable (it is empty)");
     coupling_.validate(where);
+    if (mistuning_.empty()) mistuning_.assign(static_cast<std::size_t>(num_sectors), Scalar(0));
+    if (static_cast<Index>(mistuning_.size()) != num_sectors)
+      detail::throw_invalid(where, "mistuning must be empty or hold num_sectors = " + std::to_string(num_sectors) +
+                                       " values; mistuning.size()", mistuning_.size());
+    for (std::size_t k = 0; k < mistuning_.size(); ++k)
+      if (!(detail::is_finite(mistuning_[k]) && mistuning_[k] > Scalar(-1)))
+        detail::throw_invalid(where, "mistuning[" + std::to_string(k) + "] must be finite and > -1", mistuning_[k]);
 
-    attachments_ = builder(sector_, SectorPlacement<Scalar>{0, Vector2::Zero()});
+    attachments_ = builder(sector_, SectorPlacement<Scalar>{0, Vector2::Zero(), Scalar(1)});
     nodes_per_sector_ = sector_.num_nodes();
     members_per_sector_ = sector_.num_members();
     if (nodes_per_sector_ < 1) detail::throw_invalid(where, "sector: the builder added no node; num_nodes", 0);
@@ -115,7 +129,8 @@ class BladedDisk {
 
     for (Index k = 0; k < num_sectors; ++k) {
       const Vector2 origin(Scalar(k) * pitch, Scalar(0));
-      const SectorAttachments a = builder(frame_, SectorPlacement<Scalar>{k, origin});
+      const SectorAttachments a =
+          builder(frame_, SectorPlacement<Scalar>{k, origin, Scalar(1) + mistuning_[static_cast<std::size_t>(k)]});
       const std::string sector = "sector " + std::to_string(k);
       if (frame_.num_nodes() != (k + 1) * nodes_per_sector_ || frame_.num_members() != (k + 1) * members_per_sector_)
         throw std::invalid_argument(std::string(where) + ": " + sector + ": the builder must add the same " +
@@ -154,6 +169,12 @@ class BladedDisk {
   const SectorAttachments& attachments() const noexcept { return attachments_; }
   /// The coupling between neighbours.
   const SectorCoupling<Scalar>& coupling() const noexcept { return coupling_; }
+  /// delta_k per sector (zeros for a tuned disk).
+  const std::vector<Scalar>& mistuning() const noexcept { return mistuning_; }
+  /// True when every delta_k is 0 (cyclic symmetry holds).
+  bool is_tuned() const noexcept {
+    return std::all_of(mistuning_.begin(), mistuning_.end(), [](Scalar d) { return d == Scalar(0); });
+  }
   Index nodes_per_sector() const noexcept { return nodes_per_sector_; }      ///< P
   Index members_per_sector() const noexcept { return members_per_sector_; }  ///< Q
   /// Free-DOF numbering of the reference sector (sector_frame()).
@@ -290,6 +311,7 @@ class BladedDisk {
   Index num_sectors_ = 0;
   Scalar pitch_{};
   SectorCoupling<Scalar> coupling_;
+  std::vector<Scalar> mistuning_;
   FrameModel<Scalar> sector_;
   FrameModel<Scalar> frame_;
   SectorAttachments attachments_;

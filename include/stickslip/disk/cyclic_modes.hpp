@@ -147,7 +147,8 @@ bool hermitian_pencil_modes(const Matrix& K, const Matrix& M, Eigen::Matrix<type
 /// 0 ... floor(N/2), the lowest options.num_modes eigenpairs of K_h x = omega^2 M_h x (dense,
 /// O(n_s^3) per h for a sector of n_s free DOFs, against O((N n_s)^3) for the annulus).
 /// \throws std::invalid_argument naming the option (num_modes < 1, max_omega <= 0,
-///         rigid_body_tolerance < 0), or when an eigen solve fails
+///         rigid_body_tolerance < 0), for a mistuned disk (mistuning), or when an eigen solve
+///         fails
 template <class Scalar>
 CyclicModes<Scalar> compute_cyclic_modes(const BladedDisk<Scalar>& disk, const CyclicModalOptions<Scalar>& options = {}) {
   static const char* where = "compute_cyclic_modes";
@@ -159,6 +160,9 @@ CyclicModes<Scalar> compute_cyclic_modes(const BladedDisk<Scalar>& disk, const C
   if (options.num_modes < 1) detail::throw_invalid(where, "options.num_modes must be >= 1", options.num_modes);
   if (!(options.max_omega > Scalar(0))) detail::throw_invalid(where, "options.max_omega must be > 0", options.max_omega);
   detail::require_non_negative(where, "options.rigid_body_tolerance", options.rigid_body_tolerance);
+  if (!disk.is_tuned())
+    throw std::invalid_argument(std::string(where) + ": disk.mistuning() must be all zero (cyclic symmetry holds "
+                                                     "only for a tuned disk; use the annulus' modes)");
   const Index N = disk.num_sectors();
   CyclicModes<Scalar> out;
   out.num_sectors = N;
