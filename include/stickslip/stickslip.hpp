@@ -11,3 +11,4 @@
 #include "stickslip/model.hpp"
 #include "stickslip/sweep.hpp"
 #include "stickslip/steady_state.hpp"
+#include "stickslip/disk.hpp"

@@ -1,0 +1,11 @@
+#pragma once
+/// \file disk.hpp
+/// \brief Bladed disks: N sectors coupled in a cyclic chain, cyclic-symmetry modes, engine-order
+/// excitation, mistuning and friction joints between neighbouring platforms (docs/disks.md).
+
+#include "stickslip/disk/bladed_disk.hpp"
+#include "stickslip/disk/cyclic_modes.hpp"
+#include "stickslip/disk/engine_order.hpp"
+#include "stickslip/disk/mistuning.hpp"
+#include "stickslip/disk/neighbour_joints.hpp"
+#include "stickslip/disk/sector_coupling.hpp"

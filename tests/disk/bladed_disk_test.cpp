@@ -1,0 +1,455 @@
+// Bladed disks: the annulus assembly against the same disk built by hand, cyclic-symmetry modes
+// against the full annulus' modes (compute_modes, a different solver on a different matrix),
+// engine-order forcing against the closed-form modal receptance, the nodal-diameter content of
+// the forced response by a discrete Fourier transform over the blades, bad input, and a
+// frictional disk through simulate() with its energy audit.
+
+#include <stickslip/disk.hpp>
+#include <stickslip/stickslip.hpp>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace bladed_disk_test {
+
+using namespace stickslip;
+using Vector = Eigen::VectorXd;
+using Matrix = Eigen::MatrixXd;
+using Vector2 = Eigen::Vector2d;
+using Disk = BladedDisk<double>;
+
+constexpr double kPi = 3.14159265358979323846;
+// A stocky steel section: (A L^2 / I) moderate, so that lambda_max / lambda_1 of the sector stays
+// near 1e5 and the dense standard-form eigenvalues carry ~eps * 1e5 ~ 2e-11 relative error.
+const SectionProperties<double> kSection{2.0e11, 7800, 1e-4, 1e-9};
+constexpr double kBlade = 0.2, kPlatform = 0.04, kPitch = 0.05;
+
+/// The paper's blade + platform as a sector: platform from (-L2/2, L1) to (L2/2, L1) in two
+/// elements, the blade from the clamped root (0, 0) to the platform's middle in four. Sector
+/// numbering: node 0 left wing, 1 right wing, 2 platform middle (the blade tip), 3 root; member
+/// 0 platform, member 1 blade.
+SectorAttachments build_sector(FrameModel<double>& f, const Vector2& o, double stiffness_factor = 1.0) {
+  SectionProperties<double> section = kSection;
+  section.E *= stiffness_factor;
+  const NodeId left = f.add_node(o.x() - kPlatform / 2, o.y() + kBlade);
+  const NodeId right = f.add_node(o.x() + kPlatform / 2, o.y() + kBlade);
+  const MemberId platform = f.add_member(left, right, section, 2);
+  const NodeId mid = f.member(platform).nodes[1];
+  const NodeId root = f.add_node(o.x(), o.y());
+  f.add_member(root, mid, section, 4);
+  f.clamp(root);
+  return {left, right};
+}
+constexpr NodeId kTip = 2;
+constexpr MemberId kPlatformMember = 0, kBladeMember = 1;
+
+Disk::SectorBuilder builder() {
+  return [](FrameModel<double>& f, const SectorPlacement<double>& p) {
+    return build_sector(f, p.origin, p.stiffness_factor);
+  };
+}
+
+/// Springs between neighbouring platform wings of the order of the blade's tip stiffness
+/// 3 EI / L^3 = 7.5e4 N/m, so that the families split clearly.
+SectorCoupling<double> springs() { return SectorCoupling<double>::springs(5e4, 2e4, 50.0); }
+SectorCoupling<double> ring() { return SectorCoupling<double>::ring_member(kSection); }
+
+Vector sorted(Vector v) {
+  std::sort(v.data(), v.data() + v.size());
+  return v;
+}
+
+/// Every cyclic frequency with its multiplicity in the annulus (pairs twice), ascending.
+Vector cyclic_spectrum(const CyclicModes<double>& cm) {
+  std::vector<double> all;
+  for (const auto& f : cm.families)
+    for (Eigen::Index j = 0; j < f.omega.size(); ++j)
+      for (int m = 0; m < (f.pairs ? 2 : 1); ++m) all.push_back(f.omega(j));
+  return sorted(Eigen::Map<Vector>(all.data(), static_cast<Eigen::Index>(all.size())));
+}
+
+Vector annulus_omegas(const AssembledFrame<double>& fe) {
+  ModalOptions<double> mo;
+  mo.num_modes = fe.num_free();
+  mo.solver = ModalSolver::Dense;
+  return compute_modes(fe, mo).omega();
+}
+
+double max_relative_difference(const Vector& a, const Vector& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double worst = 0;
+  for (Eigen::Index i = 0; i < std::min(a.size(), b.size()); ++i)
+    worst = std::max(worst, std::abs(a(i) - b(i)) / b(i));
+  return worst;
+}
+
+CyclicModalOptions<double> all_modes() {
+  CyclicModalOptions<double> o;
+  o.num_modes = 1000;
+  return o;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cyclic symmetry against the full annulus
+
+TEST(DiskCyclicModes, FrequenciesAndPairsMatchTheFullAnnulus) {
+  for (Eigen::Index N : {6, 7}) {
+    for (const auto& coupling : {springs(), ring()}) {
+      const Disk disk(N, kPitch, builder(), coupling);
+      const auto cm = compute_cyclic_modes(disk, all_modes());
+      ASSERT_EQ(cm.families.size(), static_cast<std::size_t>(N / 2 + 1));
+      const Vector full = annulus_omegas(disk.assemble());
+      // Every annulus mode is in exactly one family: the spectra agree with multiplicity. Both
+      // are dense solves with eigenvalue errors ~eps lambda_max / lambda ~ 2e-11 (kSection).
+      EXPECT_LE(max_relative_difference(cyclic_spectrum(cm), full), 1e-9) << "N = " << N;
+      // Degenerate pairs: each frequency of 0 < h < N/2 occurs twice in the annulus.
+      for (const auto& f : cm.families) {
+        EXPECT_EQ(f.pairs, f.nodal_diameter > 0 && 2 * f.nodal_diameter < N);
+        for (Eigen::Index j = 0; j < f.omega.size(); ++j) {
+          const auto near = (((full.array() - f.omega(j)).abs() / f.omega(j)) <= 1e-9).count();
+          EXPECT_GE(near, f.pairs ? 2 : 1) << "h = " << f.nodal_diameter << ", mode " << j;
+        }
+      }
+    }
+  }
+}
+
+TEST(DiskCyclicModes, ExpandedModesAreMassNormalisedEigenvectorsOfTheAnnulus) {
+  const Disk disk(6, kPitch, builder(), ring());
+  CyclicModalOptions<double> o;
+  o.num_modes = 3;
+  const auto cm = compute_cyclic_modes(disk, o);
+  const ModalBasis<double> basis = annulus_basis(disk, cm);
+  EXPECT_EQ(basis.size(), 3 * (2 + 2 * 2));  // h = 0, 3 single; h = 1, 2 pairs
+  const auto fe = disk.assemble();
+  const Matrix K(fe.stiffness), M(fe.mass), phi = basis.phi();
+  // Phi^T M Phi = I and the residual K phi - omega^2 M phi against the annulus' own K and M,
+  // relative to omega^2 (round-off of the dense solve and the expansion, ~1e-13).
+  EXPECT_LE((phi.transpose() * M * phi - Matrix::Identity(phi.cols(), phi.cols())).cwiseAbs().maxCoeff(), 1e-10);
+  for (Eigen::Index j = 0; j < basis.size(); ++j) {
+    const double w2 = basis.omega()(j) * basis.omega()(j);
+    const Vector r = K * phi.col(j) - w2 * M * phi.col(j);
+    EXPECT_LE(r.norm() / (w2 * (M * phi.col(j)).norm()), 1e-9) << "mode " << j;
+  }
+  // The basis serves ContactSystem: its model id is the disk's frame's.
+  EXPECT_EQ(basis.model_id(), disk.frame().id());
+}
+
+// ---------------------------------------------------------------------------------------------
+// N = 2 and N = 3 against the disk built by hand
+
+/// K and M of the N-sector disk built by hand: the sectors side by side in one frame, the ring
+/// segments k -> k + 1 as ordinary one-element members, the wrap-around segment (its end lies
+/// beyond the last sector in the unrolled plane) and the springs added to the assembled matrices.
+std::pair<Matrix, Matrix> hand_built(int N, const SectorCoupling<double>& c) {
+  FrameModel<double> f;
+  for (int k = 0; k < N; ++k) build_sector(f, Vector2(k * kPitch, 0));
+  const int P = 7;  // nodes per sector: left, right, mid, root and the blade's 3 interior nodes
+  if (c.ring)
+    for (int k = 0; k + 1 < N; ++k) f.add_member(NodeId(k * P + 1), NodeId((k + 1) * P + 0), *c.ring, 1);
+  const auto fe = f.assemble();
+  Matrix K(fe.stiffness), M(fe.mass);
+  const auto scatter = [&](NodeId a, NodeId b, const Eigen::Matrix<double, 6, 6>& ke,
+                           const Eigen::Matrix<double, 6, 6>& me) {
+    for (int r = 0; r < 6; ++r)
+      for (int s = 0; s < 6; ++s) {
+        const auto fr = fe.dofs.free_index(r < 3 ? a : b, static_cast<Dof>(r % 3));
+        const auto fs = fe.dofs.free_index(s < 3 ? a : b, static_cast<Dof>(s % 3));
+        K(fr, fs) += ke(r, s);
+        M(fr, fs) += me(r, s);
+      }
+  };
+  if (c.ring) {
+    const FrameElement<double> wrap(kPitch - kPlatform, 1.0, 0.0, *c.ring);  // right wing -> next left wing
+    scatter(NodeId((N - 1) * P + 1), NodeId(0), wrap.global_stiffness(), wrap.global_mass());
+  }
+  const double k[3] = {c.k_x, c.k_y, c.k_rz};
+  for (int s = 0; s < N; ++s)
+    for (int d = 0; d < 3; ++d) {
+      const auto a = fe.dofs.free_index(NodeId(s * P + 1), static_cast<Dof>(d));
+      const auto b = fe.dofs.free_index(NodeId(((s + 1) % N) * P + 0), static_cast<Dof>(d));
+      K(a, a) += k[d];
+      K(b, b) += k[d];
+      K(a, b) -= k[d];
+      K(b, a) -= k[d];
+    }
+  return {K, M};
+}
+
+TEST(DiskAssembly, TwoAndThreeSectorsEqualTheDiskBuiltByHand) {
+  for (int N : {2, 3}) {
+    SectorCoupling<double> both = springs();
+    both.ring = kSection;
+    for (const auto& coupling : {springs(), ring(), both}) {
+      const Disk disk(N, kPitch, builder(), coupling);
+      const auto fe = disk.assemble();
+      const auto [K, M] = hand_built(N, coupling);
+      // The same element matrices summed in another order: round-off of the largest entry.
+      EXPECT_LE((Matrix(fe.stiffness) - K).cwiseAbs().maxCoeff(), 1e-13 * K.cwiseAbs().maxCoeff()) << "N = " << N;
+      EXPECT_LE((Matrix(fe.mass) - M).cwiseAbs().maxCoeff(), 1e-13 * M.cwiseAbs().maxCoeff()) << "N = " << N;
+      // Cyclic modes (N = 2: h = 0, 1, both real; N = 3: h = 0 and the pair h = 1) against the
+      // hand-built disk's modes by a plain dense generalised eigen solve.
+      const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> es(K, M, Eigen::EigenvaluesOnly);
+      const Vector reference = es.eigenvalues().cwiseSqrt();
+      EXPECT_LE(max_relative_difference(cyclic_spectrum(compute_cyclic_modes(disk, all_modes())), reference), 1e-9)
+          << "N = " << N;
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Engine-order forcing
+
+/// Spatial DFT over the blades of a nodal vector (3 P entries per sector): the norm of each
+/// harmonic h = 0 ... N - 1, sum_k u_k e^{-i 2 pi h k / N}.
+Vector harmonic_norms(const Disk& disk, const Vector& nodal) {
+  const Eigen::Index N = disk.num_sectors(), S = 3 * disk.nodes_per_sector();
+  Vector out(N);
+  for (Eigen::Index h = 0; h < N; ++h) {
+    Eigen::VectorXcd sum = Eigen::VectorXcd::Zero(S);
+    for (Eigen::Index k = 0; k < N; ++k)
+      sum += nodal.segment(k * S, S).cast<std::complex<double>>() * std::polar(1.0, -2 * kPi * double(h * k) / double(N));
+    out(h) = sum.norm();
+  }
+  return out;
+}
+
+TEST(DiskEngineOrder, ForcedResponseIsTheModalReceptanceInTheExcitedFamilyOnly) {
+  const Eigen::Index N = 6;
+  const Disk disk(N, kPitch, builder(), springs());
+  ModalOptions<double> mo;
+  mo.num_modes = disk.annulus_dofs().num_free();
+  mo.solver = ModalSolver::Dense;
+  const double zeta = 0.02;
+  // All modes of the annulus, independently of the disk's own cyclic solver.
+  const ModalBasis<double> basis = compute_modes(disk.assemble(), mo).with_modal_damping(Vector::Constant(mo.num_modes, zeta));
+  const double F = 2.0;
+  for (Eigen::Index eo : {2, 8, -4, 3}) {  // 8 and -4 alias to 2 on six blades; 3 = N/2
+    const Eigen::Index h = engine_order_nodal_diameter(eo, N);
+    // Near the first frequency of family h, where the forced response is largest.
+    const auto cm = compute_cyclic_modes(disk);
+    const double Omega = 0.97 * cm.families[static_cast<std::size_t>(h)].omega(0);
+    const auto loads = engine_order_loads(disk, kBladeMember, kBlade, LoadDirection::GlobalX, F, Omega, eo);
+    ASSERT_EQ(loads.size(), static_cast<std::size_t>(N));
+    // Closed form: F_k(t) = Re(F e^{i 2 pi EO k / N} e^{i Omega t}) at the blade tip's X, so
+    // q_r = Re(Q_r e^{i Omega t}), Q_r = phi_r^T Fhat / (omega_r^2 - Omega^2 + i c_r Omega).
+    Eigen::VectorXcd Q(basis.size());
+    for (Eigen::Index r = 0; r < basis.size(); ++r) {
+      std::complex<double> g = 0;
+      for (Eigen::Index k = 0; k < N; ++k)
+        g += basis.nodal(disk.node(k, kTip), Dof::X)(r) * F * std::polar(1.0, 2 * kPi * double(eo * k) / double(N));
+      const double w = basis.omega()(r);
+      Q(r) = g / std::complex<double>(w * w - Omega * Omega, basis.damping_coefficients()(r) * Omega);
+    }
+    const auto closed_form = [&](double t) {
+      const Eigen::VectorXcd e = Q * std::polar(1.0, Omega * t);
+      Vector x(2 * basis.size());
+      x << e.real(), (std::complex<double>(0, Omega) * e).real();
+      return x;
+    };
+    // The library's linear model driven by the loads, started on the closed-form orbit: it stays
+    // on it only if every load has the closed form's phase and direction (a wrong one would start
+    // a free vibration of the size of the response).
+    ContactSystem<double> sys(disk.frame(), basis, {}, loads);
+    ContactSystem<double>::State x0 = sys.initial_state();
+    x0.head(2 * basis.size()) = closed_form(0.0);
+    RunOptions<double> run;
+    run.stepper.rtol = 1e-10;
+    run.stepper.atol = 1e-14;
+    const double t_end = 2 * 2 * kPi / Omega;
+    const auto result = simulate(sys, sys.requested_mode(), 0.0, x0, t_end, run);
+    ASSERT_EQ(result.status, Status::Success) << result.message;
+    const Vector expected = closed_form(t_end);
+    // rtol 1e-10 over two periods: the state's error stays ~1e-9 of its size.
+    EXPECT_LE((result.x.head(2 * basis.size()) - expected).norm(), 1e-7 * expected.norm()) << "EO = " << eo;
+    // Only the harmonics +-EO (mod N) of the blade displacements respond; the others carry the
+    // round-off of phi_r^T Fhat (~1e-16 relative), and the modal equations are uncoupled, so the
+    // integration error does not leak between families.
+    const Vector norms = harmonic_norms(disk, basis.nodal_displacements(result.x.head(basis.size())));
+    const Eigen::Index r = reduced_engine_order(eo, N);
+    for (Eigen::Index g = 0; g < N; ++g) {
+      if (g == r || g == (N - r) % N) EXPECT_GT(norms(g), 0.1 * norms.maxCoeff()) << "EO = " << eo << ", h = " << g;
+      else EXPECT_LE(norms(g), 1e-10 * norms.maxCoeff()) << "EO = " << eo << ", h = " << g;
+    }
+  }
+}
+
+TEST(DiskEngineOrder, AliasedAndNegativeOrdersGiveTheSameLoads) {
+  const Disk disk(6, kPitch, builder(), springs());
+  EXPECT_EQ(reduced_engine_order(-1, 6), 5);
+  EXPECT_EQ(engine_order_nodal_diameter(-1, 6), 1);
+  EXPECT_EQ(engine_order_nodal_diameter(9, 6), 3);
+  EXPECT_EQ(engine_order_nodal_diameter(7, 6), 1);
+  const auto a = engine_order_loads(disk, kBladeMember, 0.1, LoadDirection::GlobalX, 1.0, 300.0, 2);
+  const auto b = engine_order_loads(disk, kBladeMember, 0.1, LoadDirection::GlobalX, 1.0, 300.0, 14);
+  const auto c = engine_order_loads(disk, kBladeMember, 0.1, LoadDirection::GlobalX, 1.0, 300.0, -10);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    for (double t : {0.0, 1e-3, 7e-3}) {
+      // F_k(t) = cos(Omega t + 2 pi 2 k / 6) from the formula, against each load's value.
+      const double expected = std::cos(300.0 * t + 2 * kPi * 2.0 * double(k) / 6.0);
+      EXPECT_NEAR(a[k].value(t), expected, 1e-14);
+      EXPECT_NEAR(b[k].value(t), expected, 1e-14);
+      EXPECT_NEAR(c[k].value(t), expected, 1e-14);
+      EXPECT_EQ(a[k].member, disk.member(static_cast<Eigen::Index>(k), kBladeMember));
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input
+
+template <class F>
+void expect_refused(F&& f, const std::string& what) {
+  try {
+    f();
+    ADD_FAILURE() << "accepted: " << what;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+TEST(DiskInputs, BadInputIsRefusedNamingTheParameter) {
+  expect_refused([] { Disk(1, kPitch, builder(), springs()); }, "num_sectors");
+  expect_refused([] { Disk(4, kPlatform, builder(), springs()); }, "pitch");
+  expect_refused([] { Disk(4, std::nan(""), builder(), springs()); }, "pitch");
+  expect_refused([] { Disk(4, kPitch, Disk::SectorBuilder{}, springs()); }, "builder");
+  expect_refused([] { Disk(4, kPitch, builder(), SectorCoupling<double>{}); }, "coupling");
+  expect_refused([] { Disk(4, kPitch, builder(), SectorCoupling<double>::springs(-1, 0, 0)); }, "coupling.k_x");
+  expect_refused(
+      [] {
+        Disk(4, kPitch,
+             [](FrameModel<double>& f, const SectorPlacement<double>& p) {
+               auto a = build_sector(f, p.origin);
+               a.left = -1;
+               return a;
+             },
+             springs());
+      },
+      "attachments.left");
+  expect_refused(
+      [] {
+        Disk(4, kPitch,
+             [](FrameModel<double>& f, const SectorPlacement<double>& p) {
+               auto a = build_sector(f, p.origin);
+               a.right = 99;
+               return a;
+             },
+             springs());
+      },
+      "attachments.right");
+  // A builder that ignores the placement (every sector at the origin) collides with sector 0.
+  expect_refused(
+      [] {
+        Disk(3, kPitch, [](FrameModel<double>& f, const SectorPlacement<double>& p) {
+          return build_sector(f, Vector2(p.index == 2 ? 0.001 + 2 * kPitch : p.origin.x(), 0));
+        }, springs());
+      },
+      "sector 2");
+  const Disk disk(4, kPitch, builder(), springs());
+  expect_refused([&] { engine_order_loads(disk, MemberId(2), 0.1, LoadDirection::GlobalX, 1.0, 300.0, 1); },
+                 "sector_member");
+  expect_refused([&] { engine_order_loads(disk, kBladeMember, 0.1, LoadDirection::GlobalX, std::nan(""), 300.0, 1); },
+                 "amplitude");
+  expect_refused([&] { disk.node(4, 0); }, "sector index k");
+  expect_refused([] { Disk(5, kPitch, builder(), springs(), std::vector<double>(3, 0.0)); }, "mistuning.size()");
+  expect_refused([] { Disk(3, kPitch, builder(), springs(), {0.0, 0.1, -1.0}); }, "mistuning[2]");
+  expect_refused([] { compute_cyclic_modes(Disk(3, kPitch, builder(), springs(), {0.0, 0.1, 0.0})); }, "mistuning");
+  expect_refused([] { draw_mistuning<double>(3, -0.1, 1); }, "sigma");
+  CyclicModalOptions<double> o;
+  o.num_modes = 0;
+  expect_refused([&] { compute_cyclic_modes(disk, o); }, "options.num_modes");
+  expect_refused([&] {
+    neighbour_joints(disk, {kPlatformMember, kPlatform}, {MemberId(5), 0.0}, PlaneDirection<double>::global_x(),
+                     CoulombLaw<double>(0.3, 0.3), 10.0);
+  }, "left_wing.member");
+  expect_refused([&] {
+    neighbour_joints(disk, {kPlatformMember, kPlatform}, {kPlatformMember, 0.0}, PlaneDirection<double>::global_x(),
+                     CoulombLaw<double>(0.3, 0.3), 0.0);
+  }, "normal");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Mistuning
+
+TEST(DiskMistuning, ZeroDeltasGiveTheTunedDiskAndEachDeltaScalesItsSector) {
+  const Eigen::Index N = 5;
+  const Disk tuned(N, kPitch, builder(), springs());
+  const Disk zero(N, kPitch, builder(), springs(), std::vector<double>(N, 0.0));
+  EXPECT_TRUE(zero.is_tuned());
+  const auto t = tuned.assemble(), z = zero.assemble();
+  EXPECT_EQ((Matrix(t.stiffness) - Matrix(z.stiffness)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((Matrix(t.mass) - Matrix(z.mass)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_LE(max_relative_difference(cyclic_spectrum(compute_cyclic_modes(zero, all_modes())),
+                                    cyclic_spectrum(compute_cyclic_modes(tuned, all_modes()))), 0.0);
+
+  const auto sample = draw_mistuning<double>(N, 0.05, 42);
+  const Disk mistuned(N, kPitch, builder(), springs(), sample.deltas);
+  EXPECT_FALSE(mistuned.is_tuned());
+  // Element stiffness is linear in E and the sectors' own K is block diagonal (the coupling is
+  // the same in both disks): K_mistuned - K_tuned = diag(delta of each DOF's sector) K_sectors,
+  // to the round-off of the products.
+  const Matrix sectors(tuned.frame().assemble().stiffness);
+  Matrix expected = sectors;
+  for (Eigen::Index i = 0; i < expected.rows(); ++i) {
+    const auto node = tuned.annulus_dofs().node_dof(i).first;
+    expected.row(i) *= sample.deltas[static_cast<std::size_t>(node / tuned.nodes_per_sector())];
+  }
+  const auto m = mistuned.assemble();
+  EXPECT_LE((Matrix(m.stiffness) - Matrix(t.stiffness) - expected).cwiseAbs().maxCoeff(),
+            1e-13 * sectors.cwiseAbs().maxCoeff());
+  EXPECT_EQ((Matrix(m.mass) - Matrix(t.mass)).cwiseAbs().maxCoeff(), 0.0);
+}
+
+TEST(DiskMistuning, DrawsAreReproducibleFromTheSeedWithTheRequestedScatter) {
+  const auto a = draw_mistuning<double>(7, 0.03, 2024), b = draw_mistuning<double>(7, 0.03, 2024);
+  const auto c = draw_mistuning<double>(7, 0.03, 2025);
+  EXPECT_EQ(a.deltas, b.deltas);
+  EXPECT_NE(a.deltas, c.deltas);
+  EXPECT_EQ(a.seed, 2024u);
+  // 20000 draws: mean and standard deviation within four standard errors (sigma / sqrt(n) and
+  // sigma / sqrt(2 n)) of 0 and sigma; the seed is fixed, so this is deterministic.
+  const auto big = draw_mistuning<double>(20000, 0.1, 7);
+  const Eigen::Map<const Vector> d(big.deltas.data(), 20000);
+  const double mean = d.mean(), sd = std::sqrt((d.array() - mean).square().sum() / double(d.size() - 1));
+  EXPECT_LE(std::abs(mean), 4 * 0.1 / std::sqrt(20000.0));
+  EXPECT_LE(std::abs(sd - 0.1), 4 * 0.1 / std::sqrt(40000.0));
+}
+
+// ---------------------------------------------------------------------------------------------
+// A frictional disk
+
+TEST(DiskFriction, NeighbourJointsRunThroughSimulateWithAClosedEnergyAudit) {
+  const Eigen::Index N = 4;
+  const Disk disk(N, kPitch, builder(), SectorCoupling<double>::springs(1e4, 1e4, 10.0));
+  CyclicModalOptions<double> o;
+  o.num_modes = 3;  // per nodal diameter: whole families, no pair split
+  const auto cm = compute_cyclic_modes(disk, o);
+  const ModalBasis<double> basis = annulus_basis(disk, cm).with_modal_damping(Vector::Constant(3 * N, 0.005));
+  const double Omega = cm.families[1].omega(0);  // resonance of the EO 1 family
+  const auto loads = engine_order_loads(disk, kBladeMember, kBlade, LoadDirection::GlobalX, 20.0, Omega, 1);
+  // Inclined faces (as the paper's damper): along X alone the N joints' rows sum to the
+  // platforms' axial stretch, which the retained modes lack, and all-stuck rows are dependent.
+  const auto joints = neighbour_joints(disk, {kPlatformMember, kPlatform}, {kPlatformMember, 0.0},
+                                       PlaneDirection<double>::at_angle(0.6), CoulombLaw<double>(0.4, 0.3), 20.0);
+  ContactSystem<double> sys(disk.frame(), basis, joints, loads);
+  auto x = sys.initial_state();
+  auto mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  RunOptions<double> run;
+  run.stepper.rtol = 1e-9;
+  run.stepper.atol = 1e-13;
+  const auto result = simulate(sys, mode, 0.0, x, 20 * 2 * kPi / Omega, run);
+  ASSERT_EQ(result.status, Status::Success) << result.message;
+  EXPECT_GE(sys.events().size(), 8u);  // the joints stick and slip
+  const auto b = sys.energy_balance(result.x, 0.0);
+  EXPECT_GT(b.friction_dissipation, 0.05 * b.external_work);
+  // rtol 1e-9: the audit integrals carry the integration error, ~1e-8 of the work.
+  EXPECT_LE(b.relative_residual(), 1e-6);
+}
+
+}  // namespace bladed_disk_test
