@@ -454,12 +454,12 @@ void bind_dampers(py::module_& m) {
       .value("SlipNegative", ContactState::SlipNegative, "v < 0, f = +mu_k(|v|) N")
       .value("LiftOff", ContactState::LiftOff, "N <= 0: no contact force, f = 0")
       .value("Separated", ContactState::Separated, "the damper flies free of the member, N = 0, f = 0");
-  py::enum_<MemberEnd>(m, "MemberEnd", "What a moving contact does at one end of its member (docs/model.md).")
+  py::enum_<MemberEnd>(m, "MemberEnd", "What a moving contact does at one end of its member (docs/model_separation.md).")
       .value("Default", MemberEnd::Default, "as ModelOptions.end_policy says: Throw -> Stop, Clamp/Extrapolate -> Extend")
       .value("Stop", MemberEnd::Stop, "stop the run with StopReason.LeftMember")
       .value("Extend", MemberEnd::Extend, "continue with the end element's shapes")
       .value("Wall", MemberEnd::Wall, "a rigid end stop: V -> -e V (PointDamper.wall_restitution)");
-  py::enum_<Separation>(m, "Separation", "What happens when a damper's normal force reaches zero (docs/model.md).")
+  py::enum_<Separation>(m, "Separation", "What happens when a damper's normal force reaches zero (docs/model_separation.md).")
       .value("Stop", Separation::Stop, "stop the run with StopReason.LiftOff (permanent contact; default)")
       .value("Separate", Separation::Separate,
              "the damper leaves the member, flies and lands again through an impact (PointDamper.restitution)");
@@ -637,7 +637,7 @@ void bind_system(py::module_& m) {
   using Impact = System::ImpactEvent;
   py::class_<Impact>(m, "ImpactEvent",
                      "One impact of a separated damper on its member, or of a moving contact on a MemberEnd.Wall "
-                     "(FrictionDampedSystem.impacts(); docs/model.md, \"Separation\").")
+                     "(FrictionDampedSystem.impacts(); docs/model_separation.md).")
       .def_readonly("t", &Impact::t, "time of the impact [s]")
       .def_readonly("damper", &Impact::damper, "index of the damper")
       .def_readonly("normal_impulse", &Impact::normal_impulse, "L_n >= 0 [N s], pushing the damper off the member")
@@ -729,7 +729,7 @@ void bind_system(py::module_& m) {
            "Squared natural frequencies omega_j^2 of the retained modes [rad^2/s^2] (numpy).")
       .def("linear_rates", [](const PySystem& s) { return s.linear_rates(); },
            "The rates [1/s] (complex) an explicit fixed step must resolve: the modes', the dampers' slip "
-           "oscillators, ... (docs/model.md, \"Step rates\").")
+           "oscillators, ... (docs/howto/pick_an_integrator.md, \"Step rates\").")
       .def("point_shape", &System::point_shape, py::arg("member"), py::arg("coordinate"), py::arg("direction"),
            "Row psi (numpy) with psi . q the displacement of point `coordinate` [m] of `member` along `direction` "
            "(Moment: the rotation).")
@@ -1293,7 +1293,7 @@ void bind_trade_study(py::module_& m) {
       },
       py::arg("reference"), py::arg("variants"), py::arg("t_end"), py::arg("output"), py::arg("output_interval") = 1e-3,
       py::arg("repeats") = 3, py::arg("validation_factor") = 100.0,
-      "Speed/accuracy of each variant against a validated tight reference (docs/model.md); each variant's "
+      "Speed/accuracy of each variant against a validated tight reference (docs/howto/pick_an_integrator.md); each variant's "
       "setup() is called per repeat. output: a Probe or f(t, x).");
   m.def(
       "trade_csv",

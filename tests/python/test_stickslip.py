@@ -365,7 +365,7 @@ def test_periodic_orbit_rejects_a_bad_request_naming_it():
 
 def test_a_damper_without_preload_that_may_separate_starts_in_flight():
     # Separation.Separate adds the flight coordinates y_d, y_d' after the contact coordinates and
-    # the impact-loss term to the audit (docs/model.md, "Separation"); at rest without preload
+    # the impact-loss term to the audit (docs/model_separation.md); at rest without preload
     # N = 0 is not positive, so make_consistent lets the damper leave instead of refusing the start.
     f, m, basis = cantilever()
     d = ss.PointDamper(m, 0.1, 0.01, 1e3, 0.0, ss.CoulombLaw(0.35, 0.3))
