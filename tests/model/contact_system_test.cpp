@@ -5,6 +5,7 @@
 // multiplier (no time integration, no contact logic), and the energy balance.
 
 #include "contact/den_hartog_orbit.hpp"
+#include "model/contact_samples.hpp"
 
 #include <stickslip/model/contact_system.hpp>
 #include <stickslip/stickslip.hpp>
@@ -51,25 +52,8 @@ ModalBasis<double> modes_of(const FrameModel<double>& frame, Eigen::Index count)
   return compute_modes(frame.assemble(), mo);
 }
 
-/// Records the response at output samples.
-struct Samples : NullObserver {
-  std::vector<double> t;
-  std::vector<Vector> x;
-  template <class S, class X, class M>
-  bool on_sample(S time, const X& state, const M&) {
-    t.push_back(time);
-    x.push_back(state);
-    return true;
-  }
-};
-
-RunOptions<double> tight(double output_interval) {
-  RunOptions<double> run;
-  run.stepper.rtol = 1e-10;
-  run.stepper.atol = 1e-14;
-  run.stepper.output_interval = output_interval;
-  return run;
-}
+using contact_samples::Samples;
+using contact_samples::tight;
 
 /// Eigenpairs of the FE frame with the free DOFs `a` and `b` tied, u_a = u_b (b < 0: u_a = 0),
 /// by a dense generalised eigen solve of T^T K T, T^T M T (T: the constraint's null space).

@@ -14,10 +14,26 @@
 ///
 /// The friction force f on side a along the contact's direction enters the modal equations as
 /// the generalised force w f; the system never asks which kind of contact it holds.
+///
+/// A contact whose side a is a point of a rigid body, with a unilateral normal (BodyContact),
+/// supplies five more members (has_body_side_v); its normal force is then an unknown of the
+/// coupled solve and normal_force() is not read:
+///
+///     const BodyPoint<Scalar>& body_point() const;          // side a: body index, point r
+///     PlaneDirection<Scalar> tangent_direction() const;     // t (global)
+///     PlaneDirection<Scalar> normal_direction() const;      // n (global, from side b towards a)
+///     Vector normal_row(frame, basis, where) const;         // structure part of v_n = n . v_rel
+///     Scalar restitution_coefficient() const;               // e of a landing
+///     Scalar gap_at_reference() const;                      // g0, the gap at zero coordinates
+///
+/// tangential_row() is then the structure part of the sliding velocity's row; the body part
+/// [t, t . (k x R(theta) r)] is added by the system at each evaluation.
 
 #include <stickslip/beam/frame_model.hpp>
 #include <stickslip/contact/contact_state.hpp>
 #include <stickslip/modal/modal_basis.hpp>
+#include <stickslip/model/rigid_body.hpp>
+#include <stickslip/model/structure_point.hpp>
 
 #include <string>
 #include <type_traits>
@@ -47,5 +63,30 @@ struct is_contact<
 /// is_contact<C>::value.
 template <class C>
 inline constexpr bool is_contact_v = is_contact<C>::value;
+
+/// True when C also supplies the body side above (a rigid-body point with a unilateral normal).
+template <class C, class = void>
+struct has_body_side : std::false_type {};
+
+template <class C>
+struct has_body_side<
+    C, std::void_t<decltype(std::declval<const C&>().body_point()),
+                   decltype(std::declval<const C&>().normal_row(
+                       std::declval<const FrameModel<typename C::Scalar>&>(),
+                       std::declval<const ModalBasis<typename C::Scalar>&>(), std::declval<const std::string&>())),
+                   decltype(std::declval<const C&>().tangent_direction()),
+                   decltype(std::declval<const C&>().normal_direction()),
+                   decltype(std::declval<const C&>().restitution_coefficient()),
+                   decltype(std::declval<const C&>().gap_at_reference())>>
+    : std::bool_constant<
+          std::is_convertible_v<decltype(std::declval<const C&>().body_point()), BodyPoint<typename C::Scalar>> &&
+          std::is_convertible_v<decltype(std::declval<const C&>().tangent_direction()),
+                                PlaneDirection<typename C::Scalar>> &&
+          std::is_convertible_v<decltype(std::declval<const C&>().normal_direction()),
+                                PlaneDirection<typename C::Scalar>>> {};
+
+/// has_body_side<C>::value.
+template <class C>
+inline constexpr bool has_body_side_v = has_body_side<C>::value;
 
 }  // namespace stickslip

@@ -1,16 +1,23 @@
 #pragma once
 /// \file contact_system.hpp
-/// \brief A modal structure with friction contacts of any kind (the contact concept) and point
-/// loads, as a hybrid system: the coupled solve, guards and transitions written once over the
-/// contacts, never per kind (docs/contacts.md).
+/// \brief A modal structure with planar rigid bodies, friction contacts of any kind (the contact
+/// concept) and point loads, as a hybrid system: the coupled solve, guards and transitions
+/// written once over the contacts, never per kind (docs/contacts.md).
 ///
-/// With mass-normalised modal coordinates q (component 2), damping c_j and loads F_l(t) along
-/// rows phi_l, and contact rows w_i (s_i = w_i . q, v_i = w_i . q'):
-///   q'' = r + sum_i w_i f_i,   r = -c o q' - omega^2 o q + sum_l phi_l F_l(t).
-/// A slipping contact's force is known, f_i = -mu_k(|v_i|) N_i sgn(v_i) (paper eq. 1; a
-/// regularised law's -mu(v_i) N_i in every state). The forces lambda of the stuck contacts S
-/// keep v_S' = W_S q'' = 0: (W_S W_S^T) lambda = -W_S r_known (the capacitance form; W_S holds
-/// the rows of S), and f_required = lambda drives component 4's stick guards.
+/// Generalised coordinates z = (q, bodies' (x, y, theta)): mass-normalised modal coordinates q
+/// (component 2, damping c_j, loads F_l(t) along rows phi_l) and the bodies' coordinates, with the
+/// diagonal mass matrix M = diag(1, ..., 1, m_b, m_b, J_b, ...). Each contact i has a sliding
+/// velocity v_i = g_i . z' and, with a body side, a normal velocity v_n,i = h_i . z' (rows that
+/// depend on the bodies' rotations):
+///   M z'' = r + sum_i (g_i f_i + h_i N_i),
+///   r = (-c o q' - omega^2 o q + sum_l phi_l F_l(t), the bodies' spring and load forces).
+/// A slipping contact's force is f_i = -mu_k(|v_i|) N_i sgn(v_i) (paper eq. 1; a regularised law's
+/// -mu(v_i) N_i in every state): known under a held normal, proportional to the unknown N_i
+/// under a unilateral one. The unknowns lambda (the stuck contacts' f_i and the closed unilateral
+/// contacts' N_i) keep their velocities' rates at zero: C lambda = -(G M^-1 r + G' z'), with
+/// C = G M^-1 B^T (the capacitance form; G holds the constrained rows, B the rows the unknowns
+/// act along: h_i + mu_i g_i for a slipping contact's N_i). f_required = lambda drives component
+/// 4's stick guards, N_i = 0 a closed contact's lift-off guard, the gap a separated one's landing.
 
 #include <stickslip/beam/frame_model.hpp>
 #include <stickslip/contact/contact_state.hpp>
@@ -19,8 +26,11 @@
 #include <stickslip/model/contact_concept.hpp>
 #include <stickslip/model/damper_states.hpp>
 #include <stickslip/model/detail/contact_machine.hpp>
+#include <stickslip/model/body_contact.hpp>
 #include <stickslip/model/point_contact.hpp>
 #include <stickslip/model/point_load.hpp>
+#include <stickslip/model/rigid_body.hpp>
+#include <stickslip/model/wedge_damper.hpp>
 #include <stickslip/moving_load/member_shapes.hpp>
 #include <stickslip/ode/hybrid_system.hpp>
 
@@ -46,9 +56,10 @@ struct ContactSystemOptions {
   Scalar velocity_tolerance = CoulombContact<CoulombLaw<Scalar>>::default_velocity_tolerance();
 };
 
-/// Structure (a frame's retained modes) + contacts + point loads, as a HybridSystem (docs/ode.md)
-/// for simulate(), the steady states and the sweeps. `Contact` is any type of the contact
-/// concept (contact_concept.hpp), PointContact by default.
+/// Structure (a frame's retained modes) + planar rigid bodies + contacts + point loads, as a
+/// HybridSystem (docs/ode.md) for simulate(), the steady states and the sweeps. `Contact` is any
+/// type of the contact concept (contact_concept.hpp): PointContact by default, BodyContact for
+/// contacts of rigid-body points with unilateral normals.
 ///
 /// Thread safety: a ContactSystem holds the workspace of its solve; one object serves one run
 /// at a time. Copy it for concurrent runs (copies share nothing).
@@ -66,11 +77,15 @@ class ContactSystem {
   using Index = Eigen::Index;                                 ///< index type
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;    ///< dynamic vector
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;  ///< dynamic matrix
-  using State = Vector;                                       ///< [q, q', audit integrals]
+  using Vector2 = Eigen::Matrix<Scalar, 2, 1>;                ///< in-plane vector
+  using State = Vector;                                       ///< [z, z', audit integrals], z = (q, bodies)
   using Mode = DamperStates;                                  ///< one ContactState per contact
   using GuardVector = Vector;                                 ///< guard values
   using Load = PointLoad<Scalar>;                             ///< external point load
+  using Body = RigidBody<Scalar>;                             ///< planar rigid body
   using Options = ContactSystemOptions<Scalar>;               ///< options
+  /// True when the contacts have a rigid-body side and a unilateral normal (has_body_side_v).
+  static constexpr bool body_contacts = has_body_side_v<Contact>;
 
   /// One contact switch, logged by transition() and make_consistent().
   struct ContactEvent {
@@ -82,19 +97,23 @@ class ContactSystem {
 
   /// Forces and kinematics of the contacts at one (mode, t, x).
   struct Evaluation {
-    Vector qdd;   ///< q''
+    Vector qdd;   ///< z'' (q'' then each body's x'', y'', theta'')
     Vector f;     ///< friction force on side a of each contact along its direction [N]
     Vector v;     ///< sliding velocity of side a over side b [m/s]
-    Vector N;     ///< normal force [N]
-    bool finite = true;  ///< false when the solve failed (dependent stuck rows) or x is not finite
+    Vector N;     ///< normal force [N] (0 for an open unilateral contact)
+    Vector vn;    ///< normal velocity of side a over side b (0 under a held normal) [m/s]
+    Vector gap;   ///< gap of a unilateral contact (0 under a held normal) [m]
+    bool finite = true;  ///< false when the solve failed (dependent constraint rows) or x is not finite
   };
 
   /// The energy audit at one state: (E - E0) - (W_ext - D_visc - D_fric) = residual.
   struct EnergyBalance {
-    Scalar mechanical;            ///< E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J]
-    Scalar external_work;         ///< W_ext = int sum_l F_l phi_l . q' dt [J]
-    Scalar viscous_dissipation;   ///< D_visc = int sum_j c_j q_j'^2 dt [J]
-    Scalar friction_dissipation;  ///< D_fric = -int sum_i f_i v_i dt (+ the stuck projections) [J]
+    Scalar mechanical;            ///< E: kinetic and elastic energy of modes, bodies, body springs [J]
+    Scalar external_work;         ///< W_ext = int (sum_l F_l phi_l . q' + body loads' power) dt [J]
+    Scalar viscous_dissipation;   ///< D_visc = int (sum_j c_j q_j'^2 + dashpots' c delta'^2) dt [J]
+    /// D_fric = -int sum_i (f_i v_i + N_i v_n,i) dt, plus the kinetic energy removed by stuck
+    /// projections and impacts [J].
+    Scalar friction_dissipation;
     Scalar residual;              ///< (E - E0) - (W_ext - D_visc - D_fric) [J]
     Scalar scale;                 ///< largest magnitude of the terms, for a relative residual [J]
     /// |residual| / scale (0 when every term is 0).
@@ -107,25 +126,39 @@ class ContactSystem {
   ///         zero (its sides do not move apart in the retained modes, so it can never slip), a
   ///         contact's own checks (validate), a load's (PointLoad::validate) or one off its member.
   ContactSystem(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, std::vector<Contact> contacts,
-                std::vector<Load> loads = {}, Options options = {});
+                std::vector<Load> loads = {}, Options options = {})
+      : ContactSystem(frame, basis, std::vector<Body>{}, std::move(contacts), std::move(loads), options) {}
+
+  /// As above, with planar rigid bodies (their coordinates follow the modal coordinates in z).
+  /// \throws std::invalid_argument as above, and naming the body and the parameter for a body's
+  ///         own checks (RigidBody::validate) or a contact whose a.body names no body.
+  ContactSystem(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, std::vector<Body> bodies,
+                std::vector<Contact> contacts, std::vector<Load> loads = {}, Options options = {});
 
   Index num_modes() const noexcept { return n_; }                                  ///< n
+  Index num_bodies() const noexcept { return B_; }                                 ///< rigid bodies
+  Index num_coordinates() const noexcept { return m_; }                            ///< n + 3 bodies
   Index num_contacts() const noexcept { return D_; }                               ///< D
-  Index state_size() const noexcept { return 2 * n_ + (options_.energy_audit ? 3 : 0); }  ///< 2n (+ 3)
-  Index audit_offset() const noexcept { return 2 * n_; }  ///< first audit integral (W_ext, D_visc, D_fric)
+  Index state_size() const noexcept { return 2 * m_ + (options_.energy_audit ? 3 : 0); }  ///< 2(n + 3B) (+ 3)
+  Index audit_offset() const noexcept { return 2 * m_; }  ///< first audit integral (W_ext, D_visc, D_fric)
+  /// Index of body b's x in z (y, theta follow; its velocities at num_coordinates() later).
+  Index body_offset(Index b) const noexcept { return n_ + 3 * b; }
   const std::vector<Contact>& contacts() const noexcept { return contacts_; }     ///< the contacts
+  const std::vector<Body>& bodies() const noexcept { return bodies_; }             ///< the bodies
   const std::vector<Load>& loads() const noexcept { return loads_; }               ///< the loads
   const Options& options() const noexcept { return options_; }                     ///< the options
-  /// Row w_i of contact i (s_i = w_i . q).
+  /// Structure part w_i of contact i's sliding-velocity row (the whole row without bodies:
+  /// s_i = w_i . q).
   auto contact_row(Index i) const { return W_.row(i).transpose(); }
 
-  /// Rest: q = q' = 0, audit integrals 0.
+  /// Rest: z = z' = 0, audit integrals 0.
   State initial_state() const { return State::Zero(state_size()); }
   /// Each contact's start_state().
   Mode requested_mode() const;
 
   /// \throws std::invalid_argument naming `where` for a state of the wrong size, a mode of the
-  ///         wrong size or with a state that is not an enumerator / not allowed under a held normal.
+  ///         wrong size or with a state that is not an enumerator / not allowed by the contact's
+  ///         normal (Separated only under a unilateral normal).
   void validate_state(const Mode& mode, const State& x, const char* where = "ContactSystem") const;
 
   /// validate_state, and t0 and every x0[k] finite (simulate() calls it before the first
@@ -138,34 +171,40 @@ class ContactSystem {
   }
 
   /// Makes (mode, x) consistent at t: a contact with |v| above the velocity tolerance slides in
-  /// sgn(v), one at rest is tried stuck, a stuck contact whose force exceeds mu_s N slips (the
-  /// worst first, until every stuck force lies within mu_s N), stuck velocities are
-  /// projected to v = 0 (the kinetic energy removed is booked as friction dissipation). Logs the
-  /// switches. Returns false when no consistent set of states was found.
+  /// sgn(v), one at rest is tried stuck; a closed unilateral contact whose normal force is
+  /// negative opens (the most tensile first), a stuck contact whose force exceeds mu_s N slips
+  /// (the worst first), until the set is consistent; then the constrained velocities (stuck
+  /// sliding velocities, closed normal velocities) are projected to zero (the kinetic energy
+  /// removed is booked as friction dissipation). Logs the switches. Returns false when no
+  /// consistent set of states was found.
   bool make_consistent(Mode& mode, Scalar t, State& x);
 
-  /// dx/dt = (q', q'', audit powers).
+  /// dx/dt = (z', z'', audit powers).
   void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt);
-  /// Guards of every contact in order (component 4: stick 2, slip 1, regularised 0).
+  /// Guards of every contact in order (component 4: stick 2, slip 1, regularised 0; a closed
+  /// unilateral contact adds its normal force; an open one has its gap).
   Index num_guards(const Mode& mode) const;
-  /// Guard values (CoulombContact::guards of each contact).
+  /// Guard values (CoulombContact::guards / gap_guard of each contact).
   void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g);
   /// Crossing direction of guard idx (CoulombContact::guard_direction).
   CrossingDirection guard_direction(const Mode& mode, Index idx) const;
-  /// The contacts whose guards fired switch by component 4's rules; the whole set is then made
-  /// consistent (make_consistent). Stops the run when no consistent state exists.
+  /// The contacts whose guards fired switch by component 4's rules (a closed contact whose
+  /// normal force reached zero opens; an open one whose gap reached zero lands with an impact of
+  /// restitution e); the whole set is then made consistent (make_consistent). Stops the run
+  /// when no consistent state exists.
   TransitionAction transition(Mode& mode, const TriggeredGuards& which, Scalar t, State& x);
 
   /// Forces and kinematics at (mode, t, x); the reference stays valid until the next call of
   /// any non-const member. Reading it does not change later results.
   const Evaluation& evaluate(const Mode& mode, Scalar t, const State& x);
 
-  /// E = q'.q'/2 + sum omega_j^2 q_j^2 / 2.
+  /// E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 + sum_b (m |V|^2 + J omega^2) / 2 + sum_springs k delta^2 / 2.
   Scalar mechanical_energy(const State& x) const;
   /// The energy audit; \throws std::invalid_argument when the audit is off.
   EnergyBalance energy_balance(const State& x, Scalar E0) const;
 
-  /// Roots of s^2 + c_j s + omega_j^2 of every mode (simulate()'s RK4 stability check).
+  /// Roots of s^2 + c_j s + omega_j^2 of every mode, and of m s^2 + c s + k of each body's
+  /// springs along x and y (simulate()'s RK4 stability check).
   std::vector<std::complex<Scalar>> linear_rates() const;
 
   /// The switches logged since construction or clear_events().
@@ -177,36 +216,54 @@ class ContactSystem {
   using Machine = detail::contact_machine_t<Law>;
 
   void solve(const Mode& mode, Scalar t, const State& x) const;
+  void body_forces(Scalar t, const State& x) const;
+  void contact_kinematics(const State& x) const;
   bool has_stick_state(Index i) const {
     return detail::with_law(machines_[static_cast<std::size_t>(i)],
                                 [](const auto& m) { return std::decay_t<decltype(m)>::has_stick_state; });
   }
+  bool unilateral(Index i) const { return unilateral_[static_cast<std::size_t>(i)] != 0; }
   Index guards_of(const Mode& mode, Index i) const {
     return detail::with_law(machines_[static_cast<std::size_t>(i)],
-                                [&](const auto& m) { return m.num_guards(mode[i], false); });
+                                [&](const auto& m) { return m.num_guards(mode[i], unilateral(i)); });
   }
   bool resolve(Mode& mode, Scalar t, State& x);
-  void project_stuck_velocities(const Mode& mode, Scalar t, State& x);
+  bool impulse(const Mode& mode, Scalar t, State& x);
+  void spring_extension(const State& x, Index b, const BodySpring<Scalar>& spring, Scalar& delta, Scalar& rate,
+                        Eigen::Matrix<Scalar, 3, 1>& row) const;
   static Vector load_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, const Load& load,
                          Index l);
 
+  std::vector<Body> bodies_;
   std::vector<Contact> contacts_;
   std::vector<Load> loads_;
   Options options_;
-  Index n_ = 0, D_ = 0;
+  Index n_ = 0, B_ = 0, m_ = 0, D_ = 0;
   Vector omega2_, damping_;
-  Matrix W_;      // D x n: contact rows
+  Vector minv_;   // m: the inverse of the diagonal mass matrix
+  Matrix W_;      // D x n: structure part of the sliding-velocity rows
+  Matrix Wn_;     // D x n: structure part of the normal-velocity rows (zero under a held normal)
   Matrix Phi_;    // n x L: load rows
+  std::vector<char> unilateral_;           // contact i has a unilateral normal
+  std::vector<Index> body_of_;             // body of side a, -1 when side a is on the structure
+  std::vector<Vector2> point_, tdir_, ndir_;
+  Vector restitution_, gap0_;
   std::vector<Machine> machines_;
   std::vector<ContactEvent> events_;
+  std::vector<char> landing_;              // contacts landing at this transition
 
   // Workspace of solve(): sized at construction, no allocation in a time step.
   mutable Evaluation e_;
-  mutable Vector r_;
-  mutable Matrix C_;             // D x D, the stuck block in its top-left corner
+  mutable Vector r_;                      // m: known generalised forces
+  mutable Matrix G_, H_;                  // D x m: full sliding / normal velocity rows
+  mutable Vector gdot_, hdot_;            // D: G' z', H' z' (the rows' rates times z')
+  mutable Vector mu_;                     // D: f = mu N of a non-stuck closed unilateral contact
+  mutable Matrix rows_, cols_;            // 2D x m: constrained rows, directions of the unknowns
+  mutable Vector rate_;                   // 2D: rows' rates times z' of the constrained rows
+  mutable Matrix C_;                      // 2D x 2D, the constrained block in its top-left corner
   mutable Vector b_, lambda_;
   mutable Eigen::FullPivLU<Matrix> lu_;
-  mutable std::vector<Index> stuck_;
+  mutable std::vector<Index> unknown_;    // contact of each unknown; + D_ for a normal force
 };
 
 }  // namespace stickslip

@@ -1,0 +1,164 @@
+#pragma once
+/// \file contact_system_events.hpp
+/// \brief ContactSystem's guards and transitions (contact_system.hpp): component 4's state
+/// machine per contact, a unilateral contact's lift-off (N = 0) and landing (gap = 0, an impact
+/// of restitution e), and the consistent set of states after every switch.
+
+#include <stickslip/model/contact_system.hpp>
+
+namespace stickslip {
+
+template <class Scalar_, class Contact_>
+auto ContactSystem<Scalar_, Contact_>::requested_mode() const -> Mode {
+  Mode mode(D_);
+  for (Index i = 0; i < D_; ++i) mode[i] = contacts_[static_cast<std::size_t>(i)].start_state();
+  return mode;
+}
+
+template <class Scalar_, class Contact_>
+auto ContactSystem<Scalar_, Contact_>::num_guards(const Mode& mode) const -> Index {
+  Index k = 0;
+  for (Index i = 0; i < D_; ++i) k += guards_of(mode, i);
+  return k;
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::guards(const Mode& mode, Scalar t, const State& x, GuardVector& g) {
+  solve(mode, t, x);
+  g.resize(num_guards(mode));
+  Index k = 0;
+  for (Index i = 0; i < D_; ++i) {
+    detail::with_law(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
+      if (is_in_contact(mode[i]))
+        m.guards(mode[i], e_.v[i], e_.N[i], e_.f[i], unilateral(i), g.data() + k);
+      else
+        m.gap_guard(e_.gap[i], g.data() + k);
+    });
+    k += guards_of(mode, i);
+  }
+}
+
+template <class Scalar_, class Contact_>
+CrossingDirection ContactSystem<Scalar_, Contact_>::guard_direction(const Mode& mode, Index idx) const {
+  for (Index i = 0; i < D_; ++i) {
+    const Index gi = guards_of(mode, i);
+    if (idx < gi)
+      return detail::with_law(machines_[static_cast<std::size_t>(i)],
+                              [&](const auto& m) { return m.guard_direction(mode[i], idx, unilateral(i)); });
+    idx -= gi;
+  }
+  STICKSLIP_ASSERT(false && "ContactSystem::guard_direction: index beyond num_guards");
+  return CrossingDirection::Either;
+}
+
+template <class Scalar_, class Contact_>
+bool ContactSystem<Scalar_, Contact_>::resolve(Mode& mode, Scalar t, State& x) {
+  // A closed unilateral contact under tension opens (the most tensile first); otherwise the
+  // stuck contact whose required force exceeds its capacity most is released; one at a time,
+  // until every normal force is compressive and every stuck force lies within mu_s N.
+  for (Index iter = 0; iter <= 6 * D_ + 4; ++iter) {
+    solve(mode, t, x);
+    if (!e_.finite) return false;
+    Index worst = -1;
+    Scalar worst_excess = 0;
+    for (Index i = 0; i < D_; ++i)
+      if (unilateral(i) && is_in_contact(mode[i]) && -e_.N[i] > worst_excess) {
+        worst_excess = -e_.N[i];
+        worst = i;
+      }
+    if (worst >= 0) {
+      mode[worst] = ContactState::Separated;
+      continue;
+    }
+    for (Index i = 0; i < D_; ++i) {
+      if (mode[i] != ContactState::Stick || !has_stick_state(i)) continue;
+      const Scalar excess = detail::with_law(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (M::has_stick_state)
+          return std::abs(e_.f[i]) - m.stick_capacity(e_.N[i]);
+        else
+          return Scalar(0);
+      });
+      if (excess > worst_excess) {
+        worst_excess = excess;
+        worst = i;
+      }
+    }
+    if (worst < 0) return true;
+    mode[worst] = detail::with_law(machines_[static_cast<std::size_t>(worst)],
+                                   [&](const auto& m) { return m.decide_at_rest(e_.N[worst], e_.f[worst]); });
+    if (mode[worst] == ContactState::LiftOff && unilateral(worst)) mode[worst] = ContactState::Separated;
+  }
+  return false;
+}
+
+template <class Scalar_, class Contact_>
+bool ContactSystem<Scalar_, Contact_>::make_consistent(Mode& mode, Scalar t, State& x) {
+  validate_start(mode, t, x, "ContactSystem::make_consistent");
+  const Mode before = mode;
+  solve(mode, t, x);
+  for (Index i = 0; i < D_; ++i) {  // component 4's rule 2: sliding where |v| > tolerance
+    if (!has_stick_state(i) || !is_in_contact(mode[i])) continue;  // an open contact stays open
+    const Scalar v = e_.v[i];
+    if (std::abs(v) <= options_.velocity_tolerance) mode[i] = ContactState::Stick;  // decided at rest below
+    else mode[i] = v > 0 ? ContactState::SlipPositive : ContactState::SlipNegative;
+  }
+  bool consistent = resolve(mode, t, x);
+  if (consistent) consistent = impulse(mode, t, x);
+  for (Index i = 0; i < D_; ++i)
+    if (mode[i] != before[i]) events_.push_back({t, i, before[i], mode[i]});
+  return consistent;
+}
+
+template <class Scalar_, class Contact_>
+TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const TriggeredGuards& which, Scalar t,
+                                                              State& x) {
+  const Mode before = mode;
+  solve(mode, t, x);
+  bool landing = false;
+  for (Index idx : which) {
+    Index i = 0, k = idx;
+    for (; i < D_ && k >= guards_of(before, i); ++i) k -= guards_of(before, i);
+    if (i >= D_) continue;
+    if (!is_in_contact(before[i])) {  // the gap closed: an impact
+      landing_[static_cast<std::size_t>(i)] = 1;
+      landing = true;
+    } else if (unilateral(i) && k == guards_of(before, i) - 1) {  // the normal force reached zero
+      mode[i] = ContactState::Separated;
+    } else if (before[i] == ContactState::Stick) {
+      // A stick guard: component 4's rule 4 (slip against the required force).
+      mode[i] = detail::with_law(machines_[static_cast<std::size_t>(i)],
+                                 [&](const auto& m) { return m.decide_at_rest(e_.N[i], e_.f[i]); });
+      if (mode[i] == ContactState::LiftOff && unilateral(i)) mode[i] = ContactState::Separated;
+    } else if (is_slipping(before[i])) {
+      // A slip state's velocity guard: at rest, tried stuck and decided by resolve() with the set.
+      mode[i] = ContactState::Stick;
+    }
+  }
+  bool consistent = true;
+  if (landing) {
+    // The impact: landing normal velocities to -e v_n (0 below the velocity tolerance) with the
+    // other constraints held; a contact that does not bounce closes, tried stuck.
+    consistent = impulse(mode, t, x);
+    for (Index i = 0; i < D_; ++i) {
+      const std::size_t iu = static_cast<std::size_t>(i);
+      if (!landing_[iu]) continue;
+      landing_[iu] = 0;
+      const bool bounces = consistent && H_.row(i).dot(x.segment(m_, m_)) > options_.velocity_tolerance;
+      mode[i] = bounces ? ContactState::Separated : ContactState::Stick;
+      if (bounces) events_.push_back({t, i, ContactState::Separated, ContactState::Separated});
+    }
+  }
+  if (consistent) consistent = resolve(mode, t, x);
+  if (consistent) consistent = impulse(mode, t, x);
+  if (!consistent) {
+    mode = before;
+    return TransitionAction::halt("no consistent set of contact states at t = " + detail::format_value(t) +
+                                  " (dependent constrained contacts, or no set within mu_s N and N >= 0)");
+  }
+  for (Index i = 0; i < D_; ++i)
+    if (mode[i] != before[i]) events_.push_back({t, i, before[i], mode[i]});
+  return TransitionAction::proceed();
+}
+
+}  // namespace stickslip

@@ -1,0 +1,194 @@
+#pragma once
+/// \file contact_system_solve.hpp
+/// \brief ContactSystem's coupled solve (contact_system.hpp): the known generalised forces, the
+/// contacts' rows at the current rotations, the capacitance system of the constrained rows, and
+/// the impulses that set constrained velocities (stuck projections, landings).
+
+#include <stickslip/model/contact_system.hpp>
+
+namespace stickslip {
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::body_forces(Scalar t, const State& x) const {
+  // Loads at the centre of mass, springs and dashpots at their points: -(k delta + c delta') times
+  // the point's row [d, d . (k x R r)] (the generalised force of a force along d at the point).
+  for (Index b = 0; b < B_; ++b) {
+    const Body& body = bodies_[static_cast<std::size_t>(b)];
+    Eigen::Matrix<Scalar, 3, 1> F = Eigen::Matrix<Scalar, 3, 1>::Zero();
+    for (const auto& load : body.loads) {
+      const Scalar value = load(t);
+      F[0] += value * load.direction.x;
+      F[1] += value * load.direction.y;
+    }
+    for (const auto& spring : body.springs) {
+      Scalar delta, rate;
+      Eigen::Matrix<Scalar, 3, 1> row;
+      spring_extension(x, b, spring, delta, rate, row);
+      F -= (spring.stiffness * delta + spring.damping * rate) * row;
+    }
+    r_.template segment<3>(body_offset(b)) = F;
+  }
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::contact_kinematics(const State& x) const {
+  // Rows of the sliding and normal velocities: the structure's constant part (set at assembly)
+  // and the body point's [d, d . (k x R r)]; their rates times z' are -omega^2 d . R r (the
+  // centripetal acceleration of the point); the gap n . ((x, y) + (R - I) r) + w_n . q + g0.
+  const auto zd = x.segment(m_, m_);
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const Index body = body_of_[iu];
+    if (body >= 0) {
+      const Index o = body_offset(body);
+      const Vector2 Rr = detail::rotated(x[o + 2], point_[iu]);
+      const Scalar omega = zd[o + 2];
+      G_.row(i).template segment<3>(o) = detail::body_point_row(tdir_[iu], Rr).transpose();
+      H_.row(i).template segment<3>(o) = detail::body_point_row(ndir_[iu], Rr).transpose();
+      gdot_[i] = -omega * omega * tdir_[iu].dot(Rr);
+      hdot_[i] = -omega * omega * ndir_[iu].dot(Rr);
+      e_.gap[i] = ndir_[iu].x() * x[o] + ndir_[iu].y() * x[o + 1] + ndir_[iu].dot(Rr - point_[iu]) +
+                  Wn_.row(i).dot(x.head(n_)) + gap0_[i];
+    }
+    e_.v[i] = G_.row(i).dot(zd);
+    e_.vn[i] = H_.row(i).dot(zd);
+  }
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const State& x) const {
+  using std::isfinite;
+  const auto q = x.head(n_), qd = x.segment(m_, n_);
+  Evaluation& e = e_;
+  e.finite = true;
+  r_.head(n_) = -damping_.cwiseProduct(qd) - omega2_.cwiseProduct(q);
+  for (std::size_t l = 0; l < loads_.size(); ++l) {
+    const Scalar F = loads_[l].value(t);
+    r_.head(n_) += F * Phi_.col(static_cast<Index>(l));
+  }
+  body_forces(t, x);
+  contact_kinematics(x);
+  // The unknowns: a stuck contact's friction force (index i), a closed unilateral contact's
+  // normal force (index D + i); every other contact's force is known.
+  unknown_.clear();
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    const ContactState s = mode[i];
+    const bool stuck = s == ContactState::Stick && has_stick_state(i);
+    e.f[i] = 0;
+    mu_[i] = 0;
+    if (unilateral(i)) {
+      e.N[i] = 0;
+      if (!is_in_contact(s)) continue;
+      if (stuck) unknown_.push_back(i);
+      else  // f = mu N with the law's force per unit normal force
+        mu_[i] = detail::with_law(machines_[iu], [&](const auto& m) {
+          return m.friction_force(s, e.v[i], Scalar(1), Scalar(0));
+        });
+      unknown_.push_back(D_ + i);
+      continue;
+    }
+    e.N[i] = contacts_[iu].normal_force(t);
+    if (stuck) {
+      unknown_.push_back(i);
+      continue;
+    }
+    e.f[i] = detail::with_law(machines_[iu], [&](const auto& m) {
+      return m.friction_force(s, e.v[i], e.N[i], Scalar(0));
+    });
+    r_ += e.f[i] * G_.row(i).transpose();
+  }
+  e.qdd = minv_.cwiseProduct(r_);
+  const Index U = static_cast<Index>(unknown_.size());
+  if (U > 0) {
+    // C lambda = -(rows M^-1 r + rows' z'), C = rows M^-1 cols^T, in the top-left U x U block
+    // of C (the rest a multiple of the identity of the block's scale).
+    for (Index a = 0; a < U; ++a) {
+      const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
+      if (k >= D_) {
+        rows_.row(a) = H_.row(i);
+        cols_.row(a) = H_.row(i) + mu_[i] * G_.row(i);
+        rate_[a] = hdot_[i];
+      } else {
+        rows_.row(a) = G_.row(i);
+        cols_.row(a) = G_.row(i);
+        rate_[a] = gdot_[i];
+      }
+    }
+    C_.setZero();
+    b_.setZero();
+    Scalar scale = 0;
+    for (Index a = 0; a < U; ++a) {
+      b_[a] = -(rows_.row(a).dot(e.qdd) + rate_[a]);
+      for (Index c = 0; c < U; ++c) C_(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
+      scale = std::max(scale, std::abs(C_(a, a)));
+    }
+    for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
+    lu_.compute(C_);
+    if (lu_.rank() < 2 * D_) {  // dependent constrained rows: the solve cannot split their forces
+      e.finite = false;
+      e.qdd.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+      return;
+    }
+    lambda_ = lu_.solve(b_);
+    for (Index a = 0; a < U; ++a) {
+      const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
+      e.qdd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
+      if (k >= D_) e.N[i] = lambda_[a];
+      else e.f[i] = lambda_[a];
+    }
+    for (Index i = 0; i < D_; ++i)
+      if (mu_[i] != Scalar(0)) e.f[i] = mu_[i] * e.N[i];
+  }
+  if (!(isfinite(e.qdd.sum()) && isfinite(e.f.sum()) && isfinite(e.N.sum()))) e.finite = false;
+}
+
+template <class Scalar_, class Contact_>
+bool ContactSystem<Scalar_, Contact_>::impulse(const Mode& mode, Scalar t, State& x) {
+  // The constrained velocities (stuck sliding velocities, closed normal velocities: target 0;
+  // landing normal velocities: target -e v_n, or 0 when that is below the velocity tolerance)
+  // are set by the impulse along the rows that changes z' least in kinetic energy:
+  //   z' <- z' + M^-1 rows^T Lambda,   (rows M^-1 rows^T) Lambda = target - rows z'.
+  // The kinetic energy it removes is booked as friction dissipation.
+  solve(mode, t, x);
+  if (!e_.finite) return false;
+  b_.setZero();
+  Index U = 0;
+  for (Index i = 0; i < D_; ++i) {
+    const std::size_t iu = static_cast<std::size_t>(i);
+    if (landing_[iu]) {
+      rows_.row(U) = H_.row(i);
+      const Scalar bounce = -restitution_[i] * e_.vn[i];
+      b_[U++] = bounce > options_.velocity_tolerance ? bounce : Scalar(0);
+      continue;
+    }
+    if (unilateral(i) && is_in_contact(mode[i])) {
+      rows_.row(U) = H_.row(i);
+      b_[U++] = 0;
+    }
+    if (mode[i] == ContactState::Stick && has_stick_state(i)) {
+      rows_.row(U) = G_.row(i);
+      b_[U++] = 0;
+    }
+  }
+  if (U == 0) return true;
+  auto zd = x.segment(m_, m_);
+  C_.setZero();
+  Scalar scale = 0;
+  for (Index a = 0; a < U; ++a) {
+    b_[a] -= rows_.row(a).dot(zd);
+    for (Index c = 0; c <= a; ++c)
+      C_(a, c) = C_(c, a) = rows_.row(a).dot(rows_.row(c).cwiseProduct(minv_.transpose()));
+    scale = std::max(scale, C_(a, a));
+  }
+  for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
+  lu_.compute(C_);
+  if (lu_.rank() < 2 * D_) return false;
+  lambda_ = lu_.solve(b_);
+  const Scalar before = Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
+  for (Index a = 0; a < U; ++a) zd += lambda_[a] * minv_.cwiseProduct(rows_.row(a).transpose());
+  if (options_.energy_audit) x[audit_offset() + 2] += before - Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
+  return true;
+}
+
+}  // namespace stickslip

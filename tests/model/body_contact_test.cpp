@@ -1,0 +1,395 @@
+// ContactSystem with planar rigid bodies and unilateral body contacts (a wedge damper between two
+// platforms), against references that do not come from the system: the wedge's statics by hand
+// (force and moment balance with the face angles), the stuck system's frequencies from an
+// independent eigen solve of the constrained linear system assembled by hand (the platforms'
+// nodal rows, the body's point kinematics, the preload's rotational stiffness), the energy
+// balance, a separating face checked by construction, and a bouncing body against the
+// closed-form free flight with restitution.
+
+#include "model/contact_samples.hpp"
+
+#include <stickslip/model/contact_system.hpp>
+#include <stickslip/stickslip.hpp>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace body_contact_test {
+
+using namespace stickslip;
+using Vector = Eigen::VectorXd;
+using Matrix = Eigen::MatrixXd;
+using Vec2 = Eigen::Vector2d;
+using System = ContactSystem<double, BodyContact<double>>;
+using State = System::State;
+
+constexpr double kPi = 3.14159265358979323846;
+const SectionProperties<double> kPlatform{2.06e11, 7800, 1e-4, 1e-8};
+
+/// Two horizontal cantilever platforms of length 0.125 m, clamped at x = -0.25 and x = +0.25,
+/// their tips (the platform points) at x = -0.125 and x = +0.125.
+struct Platforms {
+  FrameModel<double> frame;
+  MemberId left = 0, right = 0;
+  NodeId tip_l = 0, tip_r = 0;
+  ModalBasis<double> basis;
+  explicit Platforms(Eigen::Index modes, double damping = 0.0) {
+    const NodeId root_l = frame.add_node(-0.25, 0.0), root_r = frame.add_node(0.25, 0.0);
+    tip_l = frame.add_node(-0.125, 0.0);
+    tip_r = frame.add_node(0.125, 0.0);
+    left = frame.add_member(root_l, tip_l, kPlatform, 4);
+    right = frame.add_member(root_r, tip_r, kPlatform, 4);
+    frame.clamp(root_l);
+    frame.clamp(root_r);
+    ModalOptions<double> mo;
+    mo.num_modes = modes;
+    mo.solver = ModalSolver::Dense;
+    basis = compute_modes(frame.assemble(), mo);
+    if (damping > 0) basis = basis.with_modal_damping(Vector::Constant(modes, damping));
+  }
+  StructurePoint<double> tip_left() const { return {left, 0.125}; }
+  StructurePoint<double> tip_right() const { return {right, 0.125}; }
+};
+
+/// The wedge of the statics and frequency tests: face angles 30 and 45 degrees, one contact point
+/// per face at (-a, h) and (b, h), b chosen (by hand) so that the frictionless normal forces
+/// balance the moment about the centre of mass.
+struct Wedge {
+  double mass = 0.05, inertia = 2e-5, P = 100.0;
+  double al = kPi / 6, ar = kPi / 4, a = 0.01, h = 0.004, b = 0;
+  double Nl = 0, Nr = 0;  // by hand: N_l sin a_l = N_r sin a_r, N_l cos a_l + N_r cos a_r = P
+  Vec2 nl, nr, rl, rr;    // contact normals (platform -> damper) and points
+  Wedge() {
+    Nl = P * std::sin(ar) / std::sin(al + ar);
+    Nr = P * std::sin(al) / std::sin(al + ar);
+    // Moments about the centre of mass of N_l n_l at (-a, h) and N_r n_r at (b, h) cancel.
+    b = (Nl * (a * std::cos(al) - h * std::sin(al)) + Nr * h * std::sin(ar)) / (Nr * std::cos(ar));
+    nl = Vec2(std::sin(al), -std::cos(al));
+    nr = Vec2(-std::sin(ar), -std::cos(ar));
+    rl = Vec2(-a, h);
+    rr = Vec2(b, h);
+  }
+  WedgeDamper<double> build(const Platforms& p, double mu = 0.5) const {
+    WedgeFace<double> left{{p.tip_left()}, rl, al, 0.0}, right{{p.tip_right()}, rr, ar, 0.0};
+    return wedge_damper<double>(0, mass, inertia, P, left, right, CoulombLaw<double>(mu, mu));
+  }
+};
+
+/// Structure part of a platform point's row along d (hand: the tip's nodal rows).
+Vector nodal_row(const Platforms& p, NodeId node, const Vec2& d) {
+  return (d.x() * p.basis.nodal(node, Dof::X) + d.y() * p.basis.nodal(node, Dof::Y)).transpose();
+}
+
+/// Modal coordinates of the platforms' static deflection under the forces -N_k n_k the wedge
+/// exerts on them: omega^2 q = Phi^T F.
+Vector static_deflection(const Platforms& p, const Wedge& w) {
+  const Vector F = -w.Nl * nodal_row(p, p.tip_l, w.nl) - w.Nr * nodal_row(p, p.tip_r, w.nr);
+  return F.cwiseQuotient(p.basis.omega().cwiseAbs2());
+}
+
+/// The static state: platforms deflected (static_deflection), the damper translated so that
+/// both gaps are zero, n_k . (x, y) = n_k . u_k (theta = 0), at rest.
+State static_state(const System& sys, const Platforms& p, const Wedge& w) {
+  const Eigen::Index n = p.basis.size();
+  State x = sys.initial_state();
+  x.head(n) = static_deflection(p, w);
+  Eigen::Matrix2d A;
+  A << w.nl.transpose(), w.nr.transpose();
+  const Eigen::Vector2d rhs(nodal_row(p, p.tip_l, w.nl).dot(x.head(n)), nodal_row(p, p.tip_r, w.nr).dot(x.head(n)));
+  x.segment<2>(n) = A.inverse() * rhs;
+  return x;
+}
+
+using contact_samples::Samples;
+using contact_samples::tight;
+
+// The stuck wedge in static equilibrium: the platforms deflected by the hand normal forces, the
+// damper at rest. The stuck solve is unique (its capacitance matrix is regular) and the hand
+// forces (normal N_l, N_r, tangential 0) hold every coordinate at rest, so they are its result.
+TEST(WedgeDamper, StaticNormalForcesFollowTheWedgesStatics) {
+  const Platforms p(8);
+  const Wedge w;
+  const auto wedge = w.build(p);
+  ASSERT_EQ(wedge.contacts.size(), 2u);
+  EXPECT_NEAR(wedge.contacts[0].normal.x, w.nl.x(), 1e-15);  // the builder's face normals
+  EXPECT_NEAR(wedge.contacts[1].normal.y, w.nr.y(), 1e-15);
+  System sys(p.frame, p.basis, {wedge.body}, wedge.contacts);
+  ASSERT_EQ(sys.num_coordinates(), 8 + 3);
+  State x = static_state(sys, p, w);
+  auto mode = sys.requested_mode();
+  const auto& e = sys.evaluate(mode, 0.0, x);
+  EXPECT_NEAR(e.gap[0], 0.0, 1e-15);  // closed where the platforms are
+  EXPECT_NEAR(e.gap[1], 0.0, 1e-15);
+  ASSERT_TRUE(e.finite);
+  // Rounding in a solve of condition ~1e4 (modal and body entries): 1e-9 of the load.
+  EXPECT_NEAR(e.N[0], w.Nl, 1e-9 * w.P);
+  EXPECT_NEAR(e.N[1], w.Nr, 1e-9 * w.P);
+  EXPECT_NEAR(e.f[0], 0.0, 1e-9 * w.P);
+  EXPECT_NEAR(e.f[1], 0.0, 1e-9 * w.P);
+  EXPECT_LE(e.qdd.tail(3).cwiseAbs().maxCoeff(), 1e-7 * w.P / w.mass);
+  // With the right face's point elsewhere the normal forces alone leave a moment: the stuck
+  // faces must hold it with tangential forces.
+  Wedge tilted = w;
+  tilted.rr = Vec2(2 * w.b, w.h);
+  const auto wedge2 = tilted.build(p);
+  System sys2(p.frame, p.basis, {wedge2.body}, wedge2.contacts);
+  EXPECT_GT(std::abs(sys2.evaluate(mode, 0.0, x).f[0]), 1e-3 * w.P);
+}
+
+// Small oscillations of the stuck system about that equilibrium: the rates of the system's
+// accelerations (central differences of evaluate()) against the constrained eigenproblem
+// assembled by hand: M = diag(1, m, m, J), K = diag(omega^2, 0, 0, sum_k N_k n_k . r_k) (the
+// preload's stiffness on theta: a force N n at R(theta) r has the moment N n . (k x R r), whose
+// theta-derivative is -N n . r), four constraint rows g_k = [-d . Psi_tip, d, d . (k x r)].
+TEST(WedgeDamper, StuckFrequenciesMatchTheConstrainedEigenSolve) {
+  const Eigen::Index n = 8;
+  const Platforms p(n);
+  const Wedge w;
+  const auto wedge = w.build(p);
+  System sys(p.frame, p.basis, {wedge.body}, wedge.contacts);
+  State x = static_state(sys, p, w);
+  const auto mode = sys.requested_mode();
+  const Eigen::Index m = n + 3;
+  Matrix A(m, m);
+  const double step = 1e-7;
+  for (Eigen::Index j = 0; j < m; ++j) {
+    State xp = x, xm = x;
+    xp[j] += step;
+    xm[j] -= step;
+    const Vector ap = sys.evaluate(mode, 0.0, xp).qdd;
+    const Vector am = sys.evaluate(mode, 0.0, xm).qdd;
+    A.col(j) = (ap - am) / (2 * step);
+  }
+  Eigen::EigenSolver<Matrix> es(-A);
+  std::vector<double> lam;
+  for (Eigen::Index k = 0; k < m; ++k) lam.push_back(es.eigenvalues()(k).real());
+  std::sort(lam.begin(), lam.end());
+
+  // Hand assembly.
+  Matrix M = Matrix::Identity(m, m), K = Matrix::Zero(m, m), G = Matrix::Zero(4, m);
+  M(n, n) = M(n + 1, n + 1) = w.mass;
+  M(n + 2, n + 2) = w.inertia;
+  K.topLeftCorner(n, n) = p.basis.omega().cwiseAbs2().asDiagonal();
+  K(n + 2, n + 2) = w.Nl * w.nl.dot(w.rl) + w.Nr * w.nr.dot(w.rr);
+  auto constraint = [&](Eigen::Index row, NodeId tip, const Vec2& d, const Vec2& r) {
+    G.row(row).head(n) = -nodal_row(p, tip, d).transpose();
+    G(row, n) = d.x();
+    G(row, n + 1) = d.y();
+    G(row, n + 2) = -d.x() * r.y() + d.y() * r.x();
+  };
+  const Vec2 tl(w.nl.y(), -w.nl.x()), tr(w.nr.y(), -w.nr.x());
+  constraint(0, p.tip_l, w.nl, w.rl);
+  constraint(1, p.tip_l, tl, w.rl);
+  constraint(2, p.tip_r, w.nr, w.rr);
+  constraint(3, p.tip_r, tr, w.rr);
+  const Matrix T = G.fullPivLu().kernel();
+  ASSERT_EQ(T.cols(), m - 4);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> ref(T.transpose() * K * T, T.transpose() * M * T);
+  // The system's rates hold the 4 zero eigenvalues of the constrained directions, then the
+  // m - 4 squared frequencies. Central differences of a solve linear in q and smooth in theta:
+  // truncation ~ step^2 and rounding ~ 1e-16 |z''| / step ~ 1e-8 relative; 1e-6 leaves margin
+  // and is far below the preload's rotational stiffness (about -1.4 N m/rad against the
+  // platforms' ~1e2 N m/rad on theta through the contact arms).
+  const double top = ref.eigenvalues().maxCoeff();
+  for (int k = 0; k < 4; ++k) EXPECT_LE(std::abs(lam[static_cast<std::size_t>(k)]), 1e-6 * top) << k;
+  for (Eigen::Index k = 0; k < m - 4; ++k)
+    EXPECT_NEAR(lam[static_cast<std::size_t>(k + 4)], ref.eigenvalues()(k), 1e-6 * ref.eigenvalues()(k)) << k;
+}
+
+// The wedge, stuck in its static equilibrium, with the left platform shaken vertically: the
+// damper sticks, slips, turns, lifts off a face and lands again (plastic impacts); the energy
+// audit closes, the impacts' losses booked in it.
+TEST(WedgeDamper, StickSlipRunWithRotationClosesTheEnergyBalance) {
+  const Eigen::Index n = 8;
+  const Platforms p(n, 0.01);
+  const Wedge w;
+  WedgeFace<double> left{{p.tip_left()}, w.rl, w.al, 0.0}, right{{p.tip_right()}, w.rr, w.ar, 0.0};
+  const auto wedge = wedge_damper<double>(0, w.mass, w.inertia, w.P, left, right, CoulombLaw<double>(0.25, 0.2));
+  const double W = 0.6 * p.basis.omega()(0);
+  std::vector<PointLoad<double>> loads{PointLoad<double>::harmonic(p.left, 0.125, LoadDirection::GlobalY, 30.0, W)};
+  System sys(p.frame, p.basis, {wedge.body}, wedge.contacts, loads);
+  State x = static_state(sys, p, w);
+  auto mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  const double E0 = sys.mechanical_energy(x);
+  Samples rec;
+  const double T = 2 * kPi / W;
+  auto result = simulate(sys, mode, 0.0, x, 4 * T, tight(T / 200), rec);
+  ASSERT_EQ(result.status, Status::Success) << result.message;
+  EXPECT_GE(sys.events().size(), 4u);  // stick-slip: the faces switch repeatedly
+  int landings = 0;
+  for (const auto& ev : sys.events()) landings += ev.from == ContactState::Separated ? 1 : 0;
+  EXPECT_GE(landings, 1);
+  double theta = 0;
+  for (const auto& xs : rec.x) theta = std::max(theta, std::abs(xs[n + 2]));
+  EXPECT_GT(theta, 1e-6);  // the damper turns (rad)
+  const auto b = sys.energy_balance(result.x, E0);
+  EXPECT_GT(b.friction_dissipation, 0.0);
+  // rtol 1e-10: the audit integrals carry the integration error, ~1e-9 of the work; stuck
+  // projections are booked exactly.
+  EXPECT_LE(b.relative_residual(), 1e-7) << b.residual << " of " << b.scale;
+}
+
+// A lateral load H(t) growing from 0 pushes the damper towards the right platform and unloads
+// the left face until it opens (without friction at H = P tan a_r, by the statics; stuck faces
+// carry part of H tangentially, so later). Both faces' normals pass through the centre of mass,
+// the right face's point is the centre of mass. The right face slides once
+// |P sin a_r - H cos a_r| > mu (P cos a_r + H sin a_r) (H = 1.5 P for mu = 0.2). By construction,
+// after the left face opens its normal force is 0 and its gap grows while the right face slides.
+TEST(WedgeDamper, OneFaceSeparatesWhileTheOtherSlides) {
+  const Eigen::Index n = 8;
+  const Platforms p(n, 0.02);
+  Wedge w;
+  w.rl = 0.01 * Vec2(-w.nl.x(), -w.nl.y());  // on the normal line through the centre of mass
+  w.rr = Vec2::Zero();
+  WedgeFace<double> left{{p.tip_left()}, w.rl, w.al, 0.0}, right{{p.tip_right()}, w.rr, w.ar, 0.0};
+  auto wedge = wedge_damper<double>(0, w.mass, w.inertia, w.P, left, right, CoulombLaw<double>(0.2, 0.2));
+  const double rate = 2e4;  // H' [N/s]: H reaches P tan a_r = 100 N at 5 ms, many platform periods
+  BodyLoad<double> lateral;
+  lateral.direction = PlaneDirection<double>::global_x();
+  lateral.time_function = [rate](double t) { return rate * t; };
+  wedge.body.loads.push_back(lateral);
+  System sys(p.frame, p.basis, {wedge.body}, wedge.contacts);
+  State x = static_state(sys, p, w);
+  auto mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  ASSERT_EQ(mode[0], ContactState::Stick);
+  ASSERT_EQ(mode[1], ContactState::Stick);
+  Samples rec;
+  const double t_open = w.P * std::tan(w.ar) / rate;
+  auto result = simulate(sys, mode, 0.0, x, 2.5 * t_open, tight(t_open / 100), rec);
+  ASSERT_EQ(result.status, Status::Success) << result.message;
+  double opened = -1;
+  for (const auto& ev : sys.events())
+    if (ev.contact == 0 && ev.to == ContactState::Separated && opened < 0) opened = ev.t;
+  ASSERT_GT(opened, 0.0);
+  ASSERT_LT(opened, 2.0 * t_open);  // leaves the checks below a stretch of sliding
+  EXPECT_EQ(result.mode[0], ContactState::Separated);
+  EXPECT_TRUE(is_slipping(result.mode[1]));
+  double last_gap = 0;
+  int checked = 0;
+  for (std::size_t k = 0; k < rec.t.size(); ++k) {
+    if (rec.t[k] < opened + 0.05 * t_open) continue;
+    const auto& e = sys.evaluate(result.mode, rec.t[k], rec.x[k]);
+    if (rec.t[k] > 2.0 * t_open) {  // sliding on the right face: the left one open, unloaded, its gap growing
+      EXPECT_EQ(e.N[0], 0.0);
+      EXPECT_GT(e.gap[0], last_gap);
+      EXPECT_GT(e.N[1], 0.0);
+      ++checked;
+    }
+    last_gap = e.gap[0];
+  }
+  EXPECT_GE(checked, 10);
+  // Once the left face is open, every force on the body acts through its centre of mass: its
+  // rotation rate stays what it was (to the integration error).
+  double omega0 = 0;
+  bool first = true;
+  for (std::size_t k = 0; k < rec.t.size(); ++k) {
+    if (rec.t[k] < opened + 0.05 * t_open) continue;
+    const double omega = rec.x[k][sys.num_coordinates() + n + 2];
+    if (first) omega0 = omega;
+    first = false;
+    EXPECT_NEAR(omega, omega0, 1e-8 * (1 + std::abs(omega0)));
+  }
+  const auto b = sys.energy_balance(result.x, sys.mechanical_energy(rec.x.front()));
+  EXPECT_LE(b.relative_residual(), 1e-7) << b.residual << " of " << b.scale;
+}
+
+// A body released at a gap g0 above ground, pressed towards it by P: free flight with
+// acceleration a = P / m lands at t1 = sqrt(2 g0 / a) with v = -a t1, leaves with e a t1 and
+// lands again after 2 e t1; each impact removes (1 - e^2) m v^2 / 2, booked in the audit.
+TEST(BodyContactLanding, BouncesWithRestitutionAsTheClosedFormFlight) {
+  FrameModel<double> frame;  // a structure the body never touches
+  const NodeId root = frame.add_node(0, 0), tip = frame.add_node(0, 0.1);
+  frame.add_member(root, tip, kPlatform, 2);
+  frame.clamp(root);
+  ModalOptions<double> mo;
+  mo.num_modes = 1;
+  const auto basis = compute_modes(frame.assemble(), mo);
+  RigidBody<double> body;
+  body.mass = 0.2;
+  body.inertia = 1e-4;
+  const double P = 4.0, g0 = 1e-3, e = 0.5;
+  body.loads.push_back({PlaneDirection<double>::global_y(), -P, {}});
+  auto contact = BodyContact<double>::on_ground({0, Vec2::Zero()}, PlaneDirection<double>::global_y(),
+                                                CoulombLaw<double>(0.3, 0.3), e);
+  contact.initial_gap = g0;
+  contact.initial_state = ContactState::Separated;
+  System sys(frame, basis, {body}, {contact});
+  State x = sys.initial_state();
+  auto mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
+  const double a = P / body.mass, t1 = std::sqrt(2 * g0 / a), t2 = t1 + 2 * e * t1;
+  auto result = simulate(sys, mode, 0.0, x, 0.5 * (t2 + t2 + 2 * e * e * t1), tight(0));
+  ASSERT_EQ(result.status, Status::Success) << result.message;
+  ASSERT_GE(sys.events().size(), 2u);
+  // Events located to ~1e-12 s on a parabola; 1e-9 s fails for a restitution off by 1e-6.
+  EXPECT_NEAR(sys.events()[0].t, t1, 1e-9);
+  EXPECT_NEAR(sys.events()[1].t, t2, 1e-9);
+  const double v_out = e * e * a * t1;  // after the second impact
+  EXPECT_NEAR(result.x[sys.num_coordinates() + sys.body_offset(0) + 1], v_out - a * (result.t - t2), 1e-8 * a * t1);
+  const double lost = 0.5 * body.mass * (1 - e * e) * (a * t1 * a * t1 + e * a * t1 * e * a * t1);
+  const auto b = sys.energy_balance(result.x, 0.0);
+  EXPECT_NEAR(b.friction_dissipation, lost, 1e-8 * lost);
+  EXPECT_LE(b.relative_residual(), 1e-8);
+}
+
+TEST(BodyContactInputs, BadBodiesAndContactsAreRefusedNamingTheParameter) {
+  const Platforms p(4);
+  RigidBody<double> ok;
+  ok.mass = 0.1;
+  ok.inertia = 1e-5;
+  const auto contact = BodyContact<double>::on_structure({0, Vec2(0.0, 0.01)}, p.tip_left(),
+                                                         PlaneDirection<double>::global_y(), CoulombLaw<double>(0.3, 0.3));
+  auto expect_refused = [&](const RigidBody<double>& body, const BodyContact<double>& c, const char* what) {
+    try {
+      System sys(p.frame, p.basis, {body}, {c});
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  EXPECT_NO_THROW(System(p.frame, p.basis, {ok}, {contact}));
+  auto body = ok;
+  body.mass = -1;
+  expect_refused(body, contact, "mass");
+  body = ok;
+  body.inertia = 0;
+  expect_refused(body, contact, "inertia");
+  body = ok;
+  body.springs.push_back({Vec2::Zero(), {0.0, 0.0}, 1e3, 0.0});
+  expect_refused(body, contact, "direction");
+  body = ok;
+  body.springs.push_back({Vec2::Zero(), PlaneDirection<double>::global_x(), -1e3, 0.0});
+  expect_refused(body, contact, "stiffness");
+  body = ok;
+  body.loads.push_back({{2.0, 0.0}, 1.0, {}});
+  expect_refused(body, contact, "direction");
+  auto c = contact;
+  c.normal = {0.6, 0.6};
+  expect_refused(ok, c, "normal");
+  c = contact;
+  c.a.body = 1;
+  expect_refused(ok, c, "a.body");
+  c = contact;
+  c.restitution = 1.5;
+  expect_refused(ok, c, "restitution");
+  c = contact;
+  c.initial_gap = 1e-3;
+  expect_refused(ok, c, "initial_gap");
+  c = contact;
+  c.b = StructurePoint<double>{p.left, 0.3};
+  expect_refused(ok, c, "coordinate");
+  try {
+    wedge_damper<double>(0, 0.1, 1e-5, 10.0, {{}, Vec2::Zero(), 2.0, 0.0}, {}, CoulombLaw<double>(0.3, 0.3));
+    ADD_FAILURE() << "accepted a face angle of 2 rad";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("left.angle"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace body_contact_test
