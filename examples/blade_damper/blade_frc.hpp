@@ -208,19 +208,32 @@ struct TipObserver : stickslip::NullObserver {
   bool on_sample(double t, const X& x, const M& m) { return on_step(t, x, m); }
 };
 
-/// The tip's extremes over one period of the orbit (a plain run of the converged orbit with
-/// samples every T / 512: a sampled sine is short of its peak by at most 1 - cos(pi / 512) =
-/// 2e-5 of the amplitude). Returns {min, max}.
-inline std::array<double, 2> orbit_tip_range(const BladeScene& scene, BladeScene::System& sys,
-                                             const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
-                                             const stickslip::ShootingOptions<double>& opt) {
-  stickslip::StepperOptions<double> so = opt.stepper;
-  so.output_interval = orbit.period / 512;
+/// The tip displacement as output 0 of every orbit (stickslip::ShootingOptions::outputs): its
+/// extremes, mean and harmonics over the orbit's own period, from the run that closed the orbit
+/// (an unstable orbit is measured where it is, not where a later run would drift), sampled 512
+/// times a period (a sampled sine is short of its peak by at most 1 - cos(pi / 512) = 2e-5 of
+/// the amplitude).
+inline void add_tip_output(const BladeScene& scene, stickslip::ShootingOptions<double>& opt) {
+  const Eigen::Index n = scene.system->initial_state().size();
+  opt.outputs = Eigen::MatrixXd::Zero(1, n);
+  opt.outputs.row(0).head(scene.tip_shape.size()) = scene.tip_shape.transpose();
+  opt.samples_per_period = 512;
+}
+
+/// The tip's extremes over the period [t0, t0 + T] of a run from (mode, t0, x0) (samples every
+/// T / 512): for a transient's next period, where there is no converged orbit. An orbit's own
+/// extremes are its output 0 (add_tip_output). Returns {min, max}.
+inline std::array<double, 2> transient_tip_range(const BladeScene& scene, BladeScene::System& sys,
+                                                 const BladeScene::System::Mode& mode, double t0,
+                                                 const BladeScene::System::State& x0, double T,
+                                                 const stickslip::StepperOptions<double>& stepper_options) {
+  stickslip::StepperOptions<double> so = stepper_options;
+  so.output_interval = T / 512;
   stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(sys, so);
   TipObserver obs;
   obs.scene = &scene;
-  obs.on_step(orbit.t0, orbit.x0, orbit.mode);
-  stepper.integrate(orbit.mode, orbit.t0, orbit.x0, orbit.t0 + orbit.period, obs);
+  obs.on_step(t0, x0, mode);
+  stepper.integrate(mode, t0, x0, t0 + T, obs);
   return {obs.lo, obs.hi};
 }
 
@@ -380,6 +393,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     opt.monodromy = stickslip::MonodromyMethod::Variational;
     start = start_orbit();
   }
+  add_tip_output(scene, opt);
   b.monodromy = stickslip::to_string(opt.monodromy);
   if (!start.ok()) {
     b.status = "start_failed";
@@ -414,16 +428,15 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   };
   const int k_T = s.period_multiple;
   auto period_of = [unit, k_T](double par) { return k_T * 2 * M_PI / (par * unit); };
-  // One point of the curve from an orbit of the branch on `sys` (its tip range is one more run).
-  auto make_point = [&scene, &opt, &b, unit, k_T](System& sys, const stickslip::ContinuationPoint<System>& pt,
-                                                  double& cpu_mark) {
+  // One point of the curve from an orbit of the branch (its tip from the orbit's own period).
+  auto make_point = [&b, unit, k_T](const stickslip::ContinuationPoint<System>& pt, double& cpu_mark) {
     FrcPoint f;
     f.preload = b.preload;
     f.period = k_T;
     f.omega = pt.parameter * unit;
-    const auto range = orbit_tip_range(scene, sys, pt.orbit, opt);
-    f.tip_amplitude = (range[1] - range[0]) / 2;
-    f.tip_max_abs = std::max(std::abs(range[0]), std::abs(range[1]));
+    const stickslip::OrbitSignal<double>& tip = pt.orbit.outputs.at(0);
+    f.tip_amplitude = tip.amplitude();
+    f.tip_max_abs = std::max(std::abs(tip.min), std::abs(tip.max));
     f.stable = pt.orbit.floquet.stable;
     f.instability = stickslip::to_string(pt.orbit.floquet.instability);
     f.max_multiplier = pt.orbit.floquet.max_modulus;
@@ -449,7 +462,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     stickslip::Continuation<System> cont(*scene.system, set_parameter, period_of, opt, co);
     cont.start_mode(blade_start_mode);
     cont.on_point([&](const stickslip::ContinuationPoint<System>& pt) {
-      b.points.push_back(make_point(*scene.system, pt, cpu_last));
+      b.points.push_back(make_point(pt, cpu_last));
       if (progress) progress(b.points.back());
     });
     const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
@@ -473,7 +486,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   std::vector<double> part_cpu(n, cpu_last);
   std::mutex progress_mutex;
   split.on_point([&](std::size_t k, const stickslip::ContinuationPoint<System>& pt) {
-    part_points[k].push_back(make_point(*ptrs[k], pt, part_cpu[k]));
+    part_points[k].push_back(make_point(pt, part_cpu[k]));
     std::lock_guard<std::mutex> lock(progress_mutex);
     if (progress) progress(part_points[k].back());
   });

@@ -7,6 +7,7 @@
 #include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
+#include "stickslip/steady_state/orbit_signal.hpp"
 #include "stickslip/steady_state/period_run.hpp"
 #include "stickslip/steady_state/poincare.hpp"
 #include "stickslip/steady_state/shooting.hpp"
