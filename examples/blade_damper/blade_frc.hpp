@@ -662,7 +662,8 @@ struct PeriodTipObserver : stickslip::NullObserver {
 /// or tried so far, past the spans of the segments already computed (a part's, a restart's),
 /// each new segment ending where the next known one starts. Each first
 /// looks at the response: Poincaré sections (stickslip::poincare_sections) after a transient
-/// from rest of 3 x transient_periods periods, 32 sections, k <= 8, tolerance 1e-6. Period k:
+/// from rest of 3 x transient_periods periods, 32 sections, k <= 8, the library's tolerance
+/// (periodic below 1e-6, undecided up to 1e-4: the candidate k is shot). Period k:
 /// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits shot
 /// from the last section (k > 1: subharmonic orbits, FrcPoint::period = k). No k: the
 /// tip's amplitude per recorded period goes to FrcBranch::not_periodic (quasi-periodic or
@@ -750,7 +751,9 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     const auto sections = stickslip::poincare_sections(*scene.system, mode, 0.0, x0, tips.T, po, tips);
     b.cpu_seconds += stickslip::detail::thread_cpu_seconds() - cpu0;
     b.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    if (!sections.periodic()) {
+    // Undecided (a recurrence within a factor 10 of the tolerance): the candidate period is shot
+    // like a periodic one, and Newton decides.
+    if (sections.period == 0) {
       FrcPoincare np;
       np.frequency_hz = sr.f_lo;
       for (std::size_t n = 0; n < tips.lo.size(); ++n) np.tip_amplitudes.push_back((tips.hi[n] - tips.lo[n]) / 2);
@@ -774,8 +777,9 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     // a short stretch shows where it is.
     if (sections.period > 1) sr.max_points = std::min(sr.max_points, 12);
     std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its transient's "
-                "sections: the response repeats every %d T)\n",
-                b.preload, sr.f_lo, b.status.c_str(), f_prev, segment + 1, sections.period);
+                "sections: the response repeats every %d T%s)\n",
+                b.preload, sr.f_lo, b.status.c_str(), f_prev, segment + 1, sections.period,
+                sections.periodic() ? "" : ", undecided: recurrence within 10x of the tolerance");
     std::fflush(stdout);
     const FrcBranch next = frc_branch(scene, sr, frc_state_scale(scene, sr), [&](const FrcPoint& f) {
       FrcPoint g = f;
