@@ -175,6 +175,16 @@ struct FrcBranch {
   std::vector<FrcPoint> points;
   /// The restarts' frequencies where the response was not periodic (FrcSettings::restarts).
   std::vector<FrcPoincare> not_periodic;
+  /// Where a Floquet multiplier crossed the unit circle along the branch and its segments
+  /// (stickslip::locate_bifurcations): kind ("fold", "pitchfork": through +1 without a turn of
+  /// the branch, i.e. symmetry breaking; "period_doubling"; "neimark_sacker"), the frequency
+  /// [Hz] interpolated to |mu| = 1, and whether the orbit lost stability there.
+  struct Bifurcation {
+    std::string kind;
+    double frequency_hz = 0;
+    bool destabilising = true;
+  };
+  std::vector<Bifurcation> bifurcations;
   /// Points in separate segments (FrcPoint::segment > 0).
   std::size_t separate_points() const {
     return static_cast<std::size_t>(
@@ -383,6 +393,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
+  add_tip_output(scene, opt);
   auto start_orbit = [&] {
     if (!settled) return blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
     stickslip::Shooting<System> shooting(*scene.system, opt);
@@ -393,7 +404,6 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     opt.monodromy = stickslip::MonodromyMethod::Variational;
     start = start_orbit();
   }
-  add_tip_output(scene, opt);
   b.monodromy = stickslip::to_string(opt.monodromy);
   if (!start.ok()) {
     b.status = "start_failed";
@@ -466,6 +476,8 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
       if (progress) progress(b.points.back());
     });
     const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
+    for (const auto& bif : result.bifurcations)
+      b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
     b.status = stickslip::to_string(result.status);
     b.message = result.message;
     b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
@@ -499,6 +511,8 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   });
   b.status = stickslip::to_string(result.branch.status);
   b.message = result.branch.message;
+  for (const auto& bif : result.branch.bifurcations)
+    b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
   b.parts = result.parts;
   for (auto& part : b.parts) part.start_parameter *= unit / (2 * M_PI);  // in Hz
   b.cpu_seconds = cpu_before;
@@ -627,6 +641,11 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
       j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
         << stickslip::to_string(b.parts[q].status) << "\", \"points\": " << b.parts[q].points
         << ", \"kept\": " << b.parts[q].kept << ", \"joined\": " << (b.parts[q].joined ? "true" : "false") << "}";
+    j << "], \"bifurcations\": [";
+    for (std::size_t q = 0; q < b.bifurcations.size(); ++q)
+      j << (q ? ", " : "") << "{\"kind\": \"" << b.bifurcations[q].kind << "\", \"frequency_hz\": "
+        << jnum(b.bifurcations[q].frequency_hz) << ", \"destabilising\": " << (b.bifurcations[q].destabilising ? "true" : "false")
+        << "}";
     j << "]"
       << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
     if (peak != b.points.end())
@@ -802,6 +821,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     f_far = beyond(f_far);
     b.status = next.status;
     b.message = next.message;
+    b.bifurcations.insert(b.bifurcations.end(), next.bifurcations.begin(), next.bifurcations.end());
     b.cpu_seconds += next.cpu_seconds;
     b.wall_seconds += next.wall_seconds;
     again = (next.status == "step_too_small" || next.status == "start_failed" ||
