@@ -175,6 +175,16 @@ struct FrcBranch {
   std::vector<FrcPoint> points;
   /// The restarts' frequencies where the response was not periodic (FrcSettings::restarts).
   std::vector<FrcPoincare> not_periodic;
+  /// Where a Floquet multiplier crossed the unit circle along the branch and its segments
+  /// (stickslip::locate_bifurcations): kind ("fold", "pitchfork": through +1 without a turn of
+  /// the branch, i.e. symmetry breaking; "period_doubling"; "neimark_sacker"), the frequency
+  /// [Hz] interpolated to |mu| = 1, and whether the orbit lost stability there.
+  struct Bifurcation {
+    std::string kind;
+    double frequency_hz = 0;
+    bool destabilising = true;
+  };
+  std::vector<Bifurcation> bifurcations;
   /// Points in separate segments (FrcPoint::segment > 0).
   std::size_t separate_points() const {
     return static_cast<std::size_t>(
@@ -208,19 +218,32 @@ struct TipObserver : stickslip::NullObserver {
   bool on_sample(double t, const X& x, const M& m) { return on_step(t, x, m); }
 };
 
-/// The tip's extremes over one period of the orbit (a plain run of the converged orbit with
-/// samples every T / 512: a sampled sine is short of its peak by at most 1 - cos(pi / 512) =
-/// 2e-5 of the amplitude). Returns {min, max}.
-inline std::array<double, 2> orbit_tip_range(const BladeScene& scene, BladeScene::System& sys,
-                                             const stickslip::PeriodicOrbit<BladeScene::System>& orbit,
-                                             const stickslip::ShootingOptions<double>& opt) {
-  stickslip::StepperOptions<double> so = opt.stepper;
-  so.output_interval = orbit.period / 512;
+/// The tip displacement as output 0 of every orbit (stickslip::ShootingOptions::outputs): its
+/// extremes, mean and harmonics over the orbit's own period, from the run that closed the orbit
+/// (an unstable orbit is measured where it is, not where a later run would drift), sampled 512
+/// times a period (a sampled sine is short of its peak by at most 1 - cos(pi / 512) = 2e-5 of
+/// the amplitude).
+inline void add_tip_output(const BladeScene& scene, stickslip::ShootingOptions<double>& opt) {
+  const Eigen::Index n = scene.system->initial_state().size();
+  opt.outputs = Eigen::MatrixXd::Zero(1, n);
+  opt.outputs.row(0).head(scene.tip_shape.size()) = scene.tip_shape.transpose();
+  opt.samples_per_period = 512;
+}
+
+/// The tip's extremes over the period [t0, t0 + T] of a run from (mode, t0, x0) (samples every
+/// T / 512): for a transient's next period, where there is no converged orbit. An orbit's own
+/// extremes are its output 0 (add_tip_output). Returns {min, max}.
+inline std::array<double, 2> transient_tip_range(const BladeScene& scene, BladeScene::System& sys,
+                                                 const BladeScene::System::Mode& mode, double t0,
+                                                 const BladeScene::System::State& x0, double T,
+                                                 const stickslip::StepperOptions<double>& stepper_options) {
+  stickslip::StepperOptions<double> so = stepper_options;
+  so.output_interval = T / 512;
   stickslip::HybridStepper<BladeScene::System, stickslip::DormandPrince54> stepper(sys, so);
   TipObserver obs;
   obs.scene = &scene;
-  obs.on_step(orbit.t0, orbit.x0, orbit.mode);
-  stepper.integrate(orbit.mode, orbit.t0, orbit.x0, orbit.t0 + orbit.period, obs);
+  obs.on_step(t0, x0, mode);
+  stepper.integrate(mode, t0, x0, t0 + T, obs);
   return {obs.lo, obs.hi};
 }
 
@@ -370,6 +393,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // docs/steady_state.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
+  add_tip_output(scene, opt);
   auto start_orbit = [&] {
     if (!settled) return blade_start_orbit(*scene.system, w_lo, s.transient_periods, opt, s.period_multiple);
     stickslip::Shooting<System> shooting(*scene.system, opt);
@@ -414,16 +438,15 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   };
   const int k_T = s.period_multiple;
   auto period_of = [unit, k_T](double par) { return k_T * 2 * M_PI / (par * unit); };
-  // One point of the curve from an orbit of the branch on `sys` (its tip range is one more run).
-  auto make_point = [&scene, &opt, &b, unit, k_T](System& sys, const stickslip::ContinuationPoint<System>& pt,
-                                                  double& cpu_mark) {
+  // One point of the curve from an orbit of the branch (its tip from the orbit's own period).
+  auto make_point = [&b, unit, k_T](const stickslip::ContinuationPoint<System>& pt, double& cpu_mark) {
     FrcPoint f;
     f.preload = b.preload;
     f.period = k_T;
     f.omega = pt.parameter * unit;
-    const auto range = orbit_tip_range(scene, sys, pt.orbit, opt);
-    f.tip_amplitude = (range[1] - range[0]) / 2;
-    f.tip_max_abs = std::max(std::abs(range[0]), std::abs(range[1]));
+    const stickslip::OrbitSignal<double>& tip = pt.orbit.outputs.at(0);
+    f.tip_amplitude = tip.amplitude();
+    f.tip_max_abs = std::max(std::abs(tip.min), std::abs(tip.max));
     f.stable = pt.orbit.floquet.stable;
     f.instability = stickslip::to_string(pt.orbit.floquet.instability);
     f.max_multiplier = pt.orbit.floquet.max_modulus;
@@ -449,10 +472,12 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     stickslip::Continuation<System> cont(*scene.system, set_parameter, period_of, opt, co);
     cont.start_mode(blade_start_mode);
     cont.on_point([&](const stickslip::ContinuationPoint<System>& pt) {
-      b.points.push_back(make_point(*scene.system, pt, cpu_last));
+      b.points.push_back(make_point(pt, cpu_last));
       if (progress) progress(b.points.back());
     });
     const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
+    for (const auto& bif : result.bifurcations)
+      b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
     b.status = stickslip::to_string(result.status);
     b.message = result.message;
     b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
@@ -473,7 +498,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   std::vector<double> part_cpu(n, cpu_last);
   std::mutex progress_mutex;
   split.on_point([&](std::size_t k, const stickslip::ContinuationPoint<System>& pt) {
-    part_points[k].push_back(make_point(*ptrs[k], pt, part_cpu[k]));
+    part_points[k].push_back(make_point(pt, part_cpu[k]));
     std::lock_guard<std::mutex> lock(progress_mutex);
     if (progress) progress(part_points[k].back());
   });
@@ -486,6 +511,8 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   });
   b.status = stickslip::to_string(result.branch.status);
   b.message = result.branch.message;
+  for (const auto& bif : result.branch.bifurcations)
+    b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
   b.parts = result.parts;
   for (auto& part : b.parts) part.start_parameter *= unit / (2 * M_PI);  // in Hz
   b.cpu_seconds = cpu_before;
@@ -614,6 +641,11 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
       j << (q ? ", " : "") << "{\"start_hz\": " << jnum(b.parts[q].start_parameter) << ", \"status\": \""
         << stickslip::to_string(b.parts[q].status) << "\", \"points\": " << b.parts[q].points
         << ", \"kept\": " << b.parts[q].kept << ", \"joined\": " << (b.parts[q].joined ? "true" : "false") << "}";
+    j << "], \"bifurcations\": [";
+    for (std::size_t q = 0; q < b.bifurcations.size(); ++q)
+      j << (q ? ", " : "") << "{\"kind\": \"" << b.bifurcations[q].kind << "\", \"frequency_hz\": "
+        << jnum(b.bifurcations[q].frequency_hz) << ", \"destabilising\": " << (b.bifurcations[q].destabilising ? "true" : "false")
+        << "}";
     j << "]"
       << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
     if (peak != b.points.end())
@@ -649,7 +681,8 @@ struct PeriodTipObserver : stickslip::NullObserver {
 /// or tried so far, past the spans of the segments already computed (a part's, a restart's),
 /// each new segment ending where the next known one starts. Each first
 /// looks at the response: Poincaré sections (stickslip::poincare_sections) after a transient
-/// from rest of 3 x transient_periods periods, 32 sections, k <= 8, tolerance 1e-6. Period k:
+/// from rest of 3 x transient_periods periods, 32 sections, k <= 8, the library's tolerance
+/// (periodic below 1e-6, undecided up to 1e-4: the candidate k is shot). Period k:
 /// a new segment (FrcPoint::segment = the next number), the branch of period-k T orbits shot
 /// from the last section (k > 1: subharmonic orbits, FrcPoint::period = k). No k: the
 /// tip's amplitude per recorded period goes to FrcBranch::not_periodic (quasi-periodic or
@@ -737,7 +770,9 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     const auto sections = stickslip::poincare_sections(*scene.system, mode, 0.0, x0, tips.T, po, tips);
     b.cpu_seconds += stickslip::detail::thread_cpu_seconds() - cpu0;
     b.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    if (!sections.periodic()) {
+    // Undecided (a recurrence within a factor 10 of the tolerance): the candidate period is shot
+    // like a periodic one, and Newton decides.
+    if (sections.period == 0) {
       FrcPoincare np;
       np.frequency_hz = sr.f_lo;
       for (std::size_t n = 0; n < tips.lo.size(); ++n) np.tip_amplitudes.push_back((tips.hi[n] - tips.lo[n]) / 2);
@@ -761,8 +796,9 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     // a short stretch shows where it is.
     if (sections.period > 1) sr.max_points = std::min(sr.max_points, 12);
     std::printf("frc N0 %g N: restart at %.3f Hz after %s up to %.3f Hz (segment %d, from its transient's "
-                "sections: the response repeats every %d T)\n",
-                b.preload, sr.f_lo, b.status.c_str(), f_prev, segment + 1, sections.period);
+                "sections: the response repeats every %d T%s)\n",
+                b.preload, sr.f_lo, b.status.c_str(), f_prev, segment + 1, sections.period,
+                sections.periodic() ? "" : ", undecided: recurrence within 10x of the tolerance");
     std::fflush(stdout);
     const FrcBranch next = frc_branch(scene, sr, frc_state_scale(scene, sr), [&](const FrcPoint& f) {
       FrcPoint g = f;
@@ -785,6 +821,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     f_far = beyond(f_far);
     b.status = next.status;
     b.message = next.message;
+    b.bifurcations.insert(b.bifurcations.end(), next.bifurcations.begin(), next.bifurcations.end());
     b.cpu_seconds += next.cpu_seconds;
     b.wall_seconds += next.wall_seconds;
     again = (next.status == "step_too_small" || next.status == "start_failed" ||

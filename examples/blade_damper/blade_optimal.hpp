@@ -80,6 +80,7 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
     const double n0 = std::exp(log_n0), c0 = stickslip::detail::thread_cpu_seconds();
     set(n0, omega);
     auto opt = blade_shooting_options(*scene.system, true);
+    add_tip_output(scene, opt);
     // From the transient's end Newton converges in 1-2 runs or not at all (stalls near a
     // grazing cost 40-50 s with the default 30 iterations): give up after 8.
     opt.max_iterations = 8;
@@ -104,14 +105,12 @@ inline int run_optimal_preload(BladeParameters p, const OptimalSettings& s, cons
       if (!sys.make_consistent(mode, 0.0, x)) return std::numeric_limits<double>::quiet_NaN();
       const auto tr = stepper.integrate(mode, 0.0, x, 2 * s.transient_periods * 2 * M_PI / omega);
       if (!tr.ok()) return std::numeric_limits<double>::quiet_NaN();
-      orbit = {};
-      orbit.mode = tr.mode;
-      orbit.x0 = tr.x;
-      orbit.period = 2 * M_PI / omega;
+      const auto range = transient_tip_range(scene, sys, tr.mode, tr.t, tr.x, 2 * M_PI / omega, opt.stepper);
+      r.tip_amplitude = (range[1] - range[0]) / 2;
       r.steady = "transient";
+    } else {
+      r.tip_amplitude = orbit.outputs.at(0).amplitude();  // over the orbit's own period
     }
-    const auto range = orbit_tip_range(scene, *scene.system, orbit, opt);
-    r.tip_amplitude = (range[1] - range[0]) / 2;
     for (Eigen::Index i = 0; i < 2; ++i)
       r.stick_fraction[i] = orbit.ok() ? stickslip::orbit_contact_statistics(orbit, i).stick_fraction
                                        : std::numeric_limits<double>::quiet_NaN();

@@ -4,9 +4,13 @@
 /// with saltation matrices, Floquet multipliers and pseudo-arclength continuation (in parts on
 /// several threads: SplitContinuation).
 
+#include "stickslip/steady_state/bifurcation.hpp"
 #include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
+#include "stickslip/steady_state/orbit_signal.hpp"
+#include "stickslip/steady_state/peak_response.hpp"
+#include "stickslip/steady_state/period_doubling.hpp"
 #include "stickslip/steady_state/period_run.hpp"
 #include "stickslip/steady_state/poincare.hpp"
 #include "stickslip/steady_state/shooting.hpp"

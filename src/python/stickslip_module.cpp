@@ -1781,7 +1781,10 @@ void bind_steady_state(py::module_& m) {
   py::enum_<PoincareStatus>(m, "PoincareStatus", "What poincare_sections found (PoincareSections.status).")
       .value("Periodic", PoincareStatus::Periodic, "the sections repeat with period k = period")
       .value("NotPeriodic", PoincareStatus::NotPeriodic, "no k <= max_period: quasi-periodic, chaotic or transient")
-      .value("IntegrationFailed", PoincareStatus::IntegrationFailed, "a run failed (see the message)");
+      .value("IntegrationFailed", PoincareStatus::IntegrationFailed, "a run failed (see the message)")
+      .value("Undecided", PoincareStatus::Undecided,
+             "the best recurrence lies within a factor of ten of the tolerance: neither verdict is safe "
+             "(period holds the candidate k; docs/steady_state.md)");
   py::class_<PyPoincare>(m, "PoincareSections", "Poincaré sections of a forced response (docs/steady_state.md).")
       .def_readonly("status", &PyPoincare::status, "what was found (PoincareStatus)")
       .def_property_readonly("periodic", [](const PyPoincare& p) { return p.status == PoincareStatus::Periodic; },
@@ -1837,13 +1840,14 @@ void bind_steady_state(py::module_& m) {
       },
       py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
       py::arg("transient_periods") = 100, py::arg("record_periods") = 32, py::arg("max_period") = 8,
-      py::arg("tolerance") = 1e-6, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      py::arg("tolerance") = PoincareOptions<double>{}.tolerance, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
       py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       "Poincaré sections of the forced response from (mode, t0, x0) (default: the system's initial state): "
       "transient_periods whole periods, then the state at the next record_periods multiples of `period`, and the "
-      "smallest k <= max_period with which they repeat to `tolerance` (relative, over the components `periodic`, "
-      "default q, q', x_d, x_d'): a period-k response, or not periodic (quasi-periodic, chaotic or still "
-      "transient). A periodic section is a guess for find_periodic_orbit with period k T (poincare_sections, "
+      "smallest k <= max_period with which they repeat to `tolerance` / 10 (relative, over the components "
+      "`periodic`, default q, q', x_d, x_d'; the tolerance at least 100 (rtol + atol / scale)): a period-k "
+      "response; within a factor 10 of the tolerance Undecided (period: the candidate k); else not periodic "
+      "(quasi-periodic, chaotic or still transient). A periodic section is a guess for find_periodic_orbit with period k T (poincare_sections, "
       "docs/steady_state.md). record_periods is bounded by the record's memory (record_periods x state_size x 16 "
       "bytes <= 1 GiB); max_steps: step attempts allowed per period's run. The GIL is released; Ctrl-C stops the "
       "call (KeyboardInterrupt).");

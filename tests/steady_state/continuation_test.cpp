@@ -236,6 +236,12 @@ TEST(SteadyStateContinuation, DuffingBranchPassesBothFoldsWithStabilityChangeThr
   const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
   ASSERT_TRUE(branch.completed()) << branch.message;
   expect_duffing_branch(branch.points);
+  // The two stability changes are folds (the branch turns at both): the upper one loses
+  // stability, the lower one regains it.
+  ASSERT_EQ(branch.bifurcations.size(), 2u);
+  for (const auto& b : branch.bifurcations) EXPECT_EQ(b.kind, stickslip::BifurcationKind::Fold);
+  EXPECT_TRUE(branch.bifurcations[0].destabilising);
+  EXPECT_FALSE(branch.bifurcations[1].destabilising);
 }
 
 // The same branch with chord iterations (plain runs solved with the last point's [M - I, dG/dp]

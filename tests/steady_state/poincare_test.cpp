@@ -91,6 +91,80 @@ TEST(SteadyStatePoincare, IncommensurateSectionsAreNotPeriodic) {
   for (double r : s.recurrence) EXPECT_GT(r, 0.05);
 }
 
+// Verdicts with a margin: the same period-3 response sectioned after ever longer transients,
+// so that its recurrence at k = 3 (the rest of the transient, which decays by e^{-0.1 t})
+// falls through the tolerance 1e-5. Periodic needs r_3 <= 1e-6, not periodic r_3 > 1e-4 (k = 1, 2
+// stay O(1)), and in between the verdict is Undecided with candidate 3: two transients whose
+// recurrences straddle the tolerance itself (which the rule "r <= tolerance" would call periodic
+// and not periodic) are both Undecided, and along the transient lengths the verdict moves
+// NotPeriodic -> Undecided -> Periodic once, never back.
+TEST(SteadyStatePoincare, RecurrenceWithinAFactorTenOfTheToleranceIsUndecided) {
+  const double w = 1.5, w_f = w / 3, T = 2 * kPi / w;
+  Oscillator sys = oscillator(w_f);
+  auto opt = options();
+  opt.tolerance = 1e-5;
+  opt.undecided_factor = 10;
+  int stage = 0;  // 0 NotPeriodic, 1 Undecided, 2 Periodic
+  bool below = false, above = false;  // an Undecided r_3 below and one above the tolerance
+  for (int n = 0; n <= 90; n += 3) {
+    opt.transient_periods = n;
+    const auto s = stickslip::poincare_sections(sys, 0, 0.0, Eigen::Vector2d(0.3, -0.1), T, opt);
+    ASSERT_EQ(s.recurrence.size(), 8u);
+    ASSERT_GT(s.recurrence[0], 1e-4) << "n = " << n;
+    ASSERT_GT(s.recurrence[1], 1e-4) << "n = " << n;
+    const double r = s.recurrence[2];
+    EXPECT_DOUBLE_EQ(s.tolerance, 1e-5);  // above the floor 100 (rtol + atol / scale) ~ 1e-8
+    if (r <= 1e-6) {
+      EXPECT_EQ(s.status, stickslip::PoincareStatus::Periodic) << "n = " << n << ", r_3 = " << r;
+      EXPECT_EQ(s.period, 3);
+      EXPECT_GE(2, stage);
+      stage = 2;
+    } else if (r <= 1e-4) {
+      EXPECT_EQ(s.status, stickslip::PoincareStatus::Undecided) << "n = " << n << ", r_3 = " << r;
+      EXPECT_STREQ(stickslip::to_string(s.status), "undecided");
+      EXPECT_FALSE(s.periodic());
+      EXPECT_EQ(s.period, 3);  // the candidate
+      EXPECT_LE(stage, 1) << "n = " << n;
+      stage = 1;
+      (r < 1e-5 ? below : above) = true;
+    } else {
+      EXPECT_EQ(s.status, stickslip::PoincareStatus::NotPeriodic) << "n = " << n << ", r_3 = " << r;
+      EXPECT_EQ(s.period, 0);
+      EXPECT_EQ(stage, 0) << "n = " << n;
+    }
+  }
+  EXPECT_EQ(stage, 2);  // the scan reached the settled response
+  EXPECT_TRUE(below && above);
+}
+
+// A tolerance below what the runs resolve is raised to 100 (rtol + atol / scale): the settled
+// period-1 response (transient e^{-0.1 t} after 150 periods of 4.2: e^-63) repeats to the runs'
+// own noise (measured r_1 = 1.7e-13), which a tolerance of 1e-14 taken as given would call not
+// periodic.
+TEST(SteadyStatePoincare, ToleranceIsAtLeastTheIntegrationFloor) {
+  const double w = 1.5, T = 2 * kPi / w;
+  Oscillator sys = oscillator(w);
+  auto opt = options();
+  opt.transient_periods = 150;
+  opt.tolerance = 1e-14;
+  opt.stepper.rtol = 1e-8;
+  opt.stepper.atol = 1e-10;
+  const auto s = stickslip::poincare_sections(sys, 0, 0.0, Eigen::Vector2d(0.3, -0.1), T, opt);
+  double scale = 0;
+  for (const auto& x : s.states) scale = std::max(scale, x.cwiseAbs().maxCoeff());
+  EXPECT_DOUBLE_EQ(s.tolerance, 100 * (1e-8 + 1e-10 / scale));
+  EXPECT_EQ(s.status, stickslip::PoincareStatus::Periodic) << "r_1 = " << s.recurrence[0];
+  EXPECT_EQ(s.period, 1);
+  auto bad = opt;
+  bad.undecided_factor = 0.5;
+  try {
+    stickslip::poincare_sections(sys, 0, 0.0, Eigen::Vector2d::Zero(), T, bad);
+    ADD_FAILURE() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("options.undecided_factor"), std::string::npos) << e.what();
+  }
+}
+
 // The observer sees the recorded periods only: its steps start at the first section.
 struct FirstStep : stickslip::NullObserver {
   double t = -1;

@@ -4,6 +4,7 @@
 /// pseudo-arclength continuation (through folds), with stability along the branch.
 
 #include <stickslip/detail/validate.hpp>
+#include <stickslip/steady_state/bifurcation.hpp>
 #include <stickslip/steady_state/shooting.hpp>
 
 #include <Eigen/Core>
@@ -131,6 +132,8 @@ struct ContinuationResult {
   ContinuationStatus status = ContinuationStatus::Completed;  ///< how it ended
   std::string message;  ///< why it ended early (empty when Completed)
   std::vector<ContinuationPoint<System>> points;  ///< the points in branch order
+  /// Where multipliers crossed the unit circle between points, and how (locate_bifurcations).
+  std::vector<BifurcationPoint<typename System::Scalar>> bifurcations;
   /// status == Completed.
   bool completed() const noexcept { return status == ContinuationStatus::Completed; }
 };
@@ -205,14 +208,20 @@ class Continuation {
   /// (SplitContinuation joins its parts so); false beyond the range ends it Completed.
   void stop_when(StopRule rule) { stop_ = std::move(rule); }
 
-  /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)).
+  /// Follow the branch from the orbit at p0 (found by shooting from (mode, t0, x0_guess)), with
+  /// its bifurcations (locate_bifurcations at options.multiplier_tolerance).
   /// Throws std::invalid_argument for p0 outside the range, or (via Shooting) for bad x0/t0.
-  Result run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0);
+  Result run(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0) {
+    Result r = follow(mode, t0, x0_guess, p0);
+    r.bifurcations = locate_bifurcations(r.points, shooting_.options().multiplier_tolerance);
+    return r;
+  }
 
  private:
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
 
+  Result follow(const Mode& mode, Scalar t0, const State& x0_guess, Scalar p0);
   // Whether ShootingOptions::interrupt asks to stop (then the result's status and message).
   bool interrupted(Result& result, Scalar p) const {
     const InterruptCheck& stop = shooting_.options().interrupt;
@@ -439,7 +448,7 @@ auto Continuation<System>::section_shift(const PeriodicOrbit<System>& orbit, Sca
 }
 
 template <class System>
-auto Continuation<System>::run(const Mode& mode0, Scalar t0, const State& x0_guess, Scalar p0)
+auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_guess, Scalar p0)
     -> Result {
   static const std::string where = "Continuation::run";
   detail::require_finite(where, "p0", p0);

@@ -6,6 +6,7 @@
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/dormand_prince54.hpp>
 #include <stickslip/ode/hybrid_stepper.hpp>
+#include <stickslip/steady_state/orbit_signal.hpp>
 #include <stickslip/steady_state/shooting_options.hpp>
 #include <stickslip/steady_state/variational_system.hpp>
 
@@ -46,6 +47,8 @@ struct PeriodRun {
   std::vector<OrbitEvent<Scalar, Mode>> events;  ///< events in (t0, t0 + T]
   /// max |x_i(t)| over the period (steps, events and samples) per amplitude component.
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> amplitudes;
+  /// The linear outputs of options.outputs over this run's period (OrbitSignal).
+  std::vector<OrbitSignal<Scalar>> outputs;
   StepperStats stats;   ///< counters (of the nominal run)
   long grazing_events = 0;  ///< events whose saltation was skipped (tangent flow)
   bool interrupted = false;  ///< options.interrupt stopped the run (status StoppedByObserver)
@@ -61,9 +64,15 @@ struct OrbitObserver {
   const std::vector<Eigen::Index>* components;
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1>* amplitudes;
   std::vector<OrbitEvent<Scalar, Mode>>* events;
+  SignalAccumulator<Scalar>* signals;
 
   template <class X>
   void track(const X& x) {
+    signals->extremes(x);
+    track_amplitudes(x);
+  }
+  template <class X>
+  void track_amplitudes(const X& x) {
     for (std::size_t k = 0; k < components->size(); ++k) {
       const auto i = (*components)[k];
       auto& a = (*amplitudes)[static_cast<Eigen::Index>(k)];
@@ -76,8 +85,9 @@ struct OrbitObserver {
     return true;
   }
   template <class X>
-  bool on_sample(Scalar, const X& x, const Mode&) {
-    track(x);
+  bool on_sample(Scalar t, const X& x, const Mode&) {
+    signals->sample(t, x);
+    track_amplitudes(x);
     return true;
   }
   template <class X>
@@ -90,7 +100,8 @@ struct OrbitObserver {
 
 /// Integrate `system` over one period [t0, t0 + T] from (mode, x0) with
 /// HybridStepper<., DormandPrince54> and options.stepper (samples every T /
-/// options.samples_per_period for the amplitudes). With `monodromy`, also M = dx(t0 + T)/dx(t0):
+/// options.samples_per_period for the amplitudes and the outputs of options.outputs, from this
+/// run itself: with the monodromy, the variational run's own state). With `monodromy`, also M = dx(t0 + T)/dx(t0):
 /// options.monodromy == Variational integrates VariationalSystem<System> (one run);
 /// FiniteDifference re-shoots 2 n perturbed orbits (column j = (x(T; x0 + h e_j) -
 /// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)). options.interrupt is asked
@@ -117,7 +128,10 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   PeriodRun<System> run;
   const std::vector<Eigen::Index> comps = options.amplitude_indices(n);
   run.amplitudes.setZero(static_cast<Eigen::Index>(comps.size()));
-  detail::OrbitObserver<Scalar, Mode> orbit_obs{&comps, &run.amplitudes, &run.events};
+  // The outputs from this run's own samples (the samples at t0 + k T / N, k = 0 .. N - 1).
+  detail::SignalAccumulator<Scalar> signals{&options.outputs, &run.outputs};
+  signals.start(t0, T, options.samples_per_period, options.output_harmonics);
+  detail::OrbitObserver<Scalar, Mode> orbit_obs{&comps, &run.amplitudes, &run.events, &signals};
   detail::InterruptibleObserver<detail::OrbitObserver<Scalar, Mode>> obs{orbit_obs, options.interrupt};
   // The run's status and message, "interrupted" when options.interrupt stopped it.
   auto finish = [&](const auto& r) {

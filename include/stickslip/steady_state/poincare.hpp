@@ -28,9 +28,18 @@ struct PoincareOptions {
   int transient_periods = 100;  ///< whole forcing periods integrated before the first section
   int record_periods = 32;      ///< sections recorded after the transient (>= 2 max_period)
   int max_period = 8;           ///< largest k looked for
-  /// The sections repeat with period k when max_n |x_P(n) - x_P(n - k)| over the record is at
-  /// most tolerance times max_n |x_P(n)| (infinity norms over the components `periodic`).
-  Scalar tolerance = Scalar(1e-6);
+  /// The recurrence tolerance: the relative recurrence r_k = max_n |x_P(n) - x_P(n - k)| /
+  /// max_n |x_P(n)| (infinity norms over the components `periodic`) is compared with
+  /// tol = max(tolerance, 100 (stepper.rtol + stepper.atol / max_n |x_P(n)|)): the sections are
+  /// runs' end states, whose global error (the step sequence of each period's run changes with
+  /// its start) lies within ~100 times the local tolerance, below which no recurrence is resolved.
+  Scalar tolerance = Scalar(1e-5);
+  /// The margin of the verdict: r_k <= tol / undecided_factor is periodic, r_k > tol
+  /// undecided_factor is not, between them the verdict is Undecided (default 10: one order of
+  /// magnitude each way: the uncertainty of the runs' global error against their tolerance, and
+  /// what the rest of a transient decaying by |mu| = 0.9 per period changes over the 22 periods
+  /// that a record of 32 sections spans after k = 8, 0.9^22 = 0.1).
+  Scalar undecided_factor = Scalar(10);
   /// Components compared (e.g. the mechanical states; quadratures grow); empty: all.
   std::vector<Eigen::Index> periodic;
   /// Options of the runs (HybridStepper with DormandPrince54).
@@ -50,6 +59,8 @@ struct PoincareOptions {
       detail::throw_invalid(where, "options.record_periods must be >= 2 options.max_period",
                             record_periods);
     detail::require_positive(where, "options.tolerance", tolerance);
+    if (!(undecided_factor >= 1) || !detail::is_finite(undecided_factor))
+      detail::throw_invalid(where, "options.undecided_factor must be finite and >= 1", undecided_factor);
     detail::require_indices(where, "options.periodic", periodic, n);
   }
 };
@@ -58,7 +69,11 @@ struct PoincareOptions {
 enum class PoincareStatus : std::uint8_t {
   Periodic,          ///< the sections repeat with period k = period (k = 1: a period-1 response)
   NotPeriodic,       ///< no k <= max_period: quasi-periodic, chaotic, or still transient
-  IntegrationFailed  ///< a run failed (message says where)
+  IntegrationFailed, ///< a run failed (message says where)
+  /// The smallest recurrence within the margin lies within a factor undecided_factor of the
+  /// tolerance: neither verdict is safe (a response still settling, or one near a bifurcation);
+  /// `period` is the candidate k (e.g. shoot k T from the last section and let Newton decide).
+  Undecided
 };
 
 /// Human-readable name of a Poincaré status.
@@ -67,6 +82,7 @@ inline const char* to_string(PoincareStatus s) noexcept {
     case PoincareStatus::Periodic: return "periodic";
     case PoincareStatus::NotPeriodic: return "not_periodic";
     case PoincareStatus::IntegrationFailed: return "integration_failed";
+    case PoincareStatus::Undecided: return "undecided";
   }
   return "unknown";
 }
@@ -78,7 +94,9 @@ struct PoincareSections {
   using Scalar = typename System::Scalar;
   PoincareStatus status = PoincareStatus::NotPeriodic;  ///< how it ended
   std::string message;                 ///< why a run failed (empty otherwise)
-  int period = 0;                      ///< k when Periodic, else 0
+  int period = 0;                      ///< k when Periodic, the candidate k when Undecided, else 0
+  /// The tolerance tol used (PoincareOptions::tolerance, raised to the integration's floor).
+  Scalar tolerance = 0;
   /// Per k = 1 .. max_period: max_n |x_P(n) - x_P(n - k)| / max_n |x_P(n)| over the record.
   std::vector<Scalar> recurrence;
   Scalar t0 = 0;                       ///< time of the first section (t0 of the call + transient)
@@ -91,12 +109,14 @@ struct PoincareSections {
 
 /// Poincaré sections of the response of `system` from (mode, t0, x0) under forcing of period T:
 /// integrates options.transient_periods periods, then records the state at the next
-/// options.record_periods multiples of T and reports the smallest k <= max_period with
+/// options.record_periods multiples of T, and with the relative recurrences
 ///
-///     max_n |x_P(n) - x_P(n - k)|_inf <= tolerance max_n |x_P(n)|_inf   (n over the record),
+///     r_k = max_n |x_P(n) - x_P(n - k)|_inf / max_n |x_P(n)|_inf   (n over the record),
 ///
-/// i.e. a period-k response to the tolerance (a subharmonic of order k for k > 1), or
-/// NotPeriodic. `observer` sees the recorded periods only (steps, events, samples), e.g. to take
+/// tol (PoincareOptions::tolerance, at least the integration's floor) and the margin m =
+/// options.undecided_factor, the smallest k <= max_period with r_k <= m tol decides: r_k <=
+/// tol / m is a period-k response (Periodic; a subharmonic of order k for k > 1), else Undecided
+/// with candidate k; no such k: NotPeriodic. `observer` sees the recorded periods only (steps, events, samples), e.g. to take
 /// the amplitude per period. A period-k section state is a good guess for Shooting::forced with
 /// period k T. Throws std::invalid_argument for T <= 0, empty or non-finite input or bad options.
 template <class System, class Observer = NullObserver>
@@ -156,15 +176,24 @@ PoincareSections<System> poincare_sections(System& system, const typename System
   for (const auto& s : out.states) scale = std::max(scale, s(P).cwiseAbs().maxCoeff());
   if (!(scale > 0)) scale = Scalar(1);  // the rest state: every k repeats it
   const auto N = out.states.size();
+  using std::max;
+  const Scalar tol = max(options.tolerance,
+                         Scalar(100) * (options.stepper.rtol + options.stepper.atol / scale));
+  const Scalar margin = options.undecided_factor;
+  out.tolerance = tol;
+  out.status = PoincareStatus::NotPeriodic;
   for (int k = 1; k <= options.max_period; ++k) {
     const auto K = static_cast<std::size_t>(k);
     Scalar worst = 0;
     for (std::size_t n = K; n < N; ++n)
       worst = std::max(worst, (out.states[n](P) - out.states[n - K](P)).cwiseAbs().maxCoeff());
-    out.recurrence.push_back(worst / scale);
-    if (out.period == 0 && worst <= options.tolerance * scale) out.period = k;
+    const Scalar r = worst / scale;
+    out.recurrence.push_back(r);
+    if (out.period == 0 && r <= margin * tol) {
+      out.period = k;
+      out.status = r <= tol / margin ? PoincareStatus::Periodic : PoincareStatus::Undecided;
+    }
   }
-  out.status = out.period > 0 ? PoincareStatus::Periodic : PoincareStatus::NotPeriodic;
   return out;
 }
 

@@ -65,8 +65,12 @@ struct PeriodicOrbit {
   Matrix monodromy;
   /// Multipliers of `monodromy`, stability and instability kind.
   FloquetMultipliers<Scalar> floquet;
-  /// max |x_i| over the orbit for options.amplitude_components.
+  /// max |x_i| over the orbit for options.amplitude_components (from the run that closed it).
   Eigen::Matrix<Scalar, Eigen::Dynamic, 1> amplitudes;
+  /// The linear outputs of options.outputs over the orbit's period (OrbitSignal: extremes, mean,
+  /// harmonics), from the run that closed the orbit: an unstable orbit is measured where it is,
+  /// not where a later run would drift.
+  std::vector<OrbitSignal<Scalar>> outputs;
   /// The events of one period, in order.
   std::vector<OrbitEvent<Scalar, Mode>> events;
   StepperStats stats;  ///< counters of the last orbit run
@@ -212,6 +216,7 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   }
   o.floquet = floquet_multipliers<Scalar>(o.monodromy, autonomous, opt_.multiplier_tolerance);
   o.amplitudes = run.amplitudes;
+  o.outputs = run.outputs;
   o.events = run.events;
   o.stats = run.stats;
   if (run.mode_end == mode) {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -78,6 +79,13 @@ struct ShootingOptions {
   int samples_per_period = 256;
   /// Components whose max |x_i| over the orbit is reported; empty: the periodic components.
   std::vector<Eigen::Index> amplitude_components;
+  /// Linear outputs y_j = outputs.row(j) x measured over each orbit's own period (OrbitSignal:
+  /// extremes, mean, harmonics), e.g. a tip displacement from modal coordinates. 0 rows: none;
+  /// else one column per state component.
+  Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic> outputs;
+  /// Harmonics 1 .. output_harmonics of each output (their Fourier coefficients need
+  /// samples_per_period > 2 output_harmonics).
+  int output_harmonics = 0;
   /// A multiplier with |mu| > 1 + multiplier_tolerance makes the orbit unstable.
   Scalar multiplier_tolerance = Scalar(1e-6);
   /// Asked after every step of every orbit run (empty: never); true stops the computation: the
@@ -115,6 +123,21 @@ struct ShootingOptions {
     detail::require_non_negative(where, "options.multiplier_tolerance", multiplier_tolerance);
     detail::require_indices(where, "options.periodic", periodic, n);
     detail::require_indices(where, "options.amplitude_components", amplitude_components, n);
+    if (output_harmonics < 0)
+      detail::throw_invalid(where, "options.output_harmonics must be >= 0", output_harmonics);
+    if (outputs.rows() > 0) {
+      if (outputs.cols() != n)
+        detail::throw_invalid(where, "options.outputs must have one column per state component (" +
+                                         std::to_string(n) + "), columns",
+                              outputs.cols());
+      if (!detail::all_finite(outputs))
+        throw std::invalid_argument(where + ": options.outputs must be finite");
+      if (samples_per_period <= 2 * output_harmonics)
+        detail::throw_invalid(where,
+                              "options.samples_per_period must be > 2 options.output_harmonics "
+                              "when options.outputs is set",
+                              samples_per_period);
+    }
   }
 
   /// The periodic indices in use for state size n (all when `periodic` is empty).

@@ -340,6 +340,7 @@ auto SplitContinuation<System>::run(const StartGuess& start) -> Result {
       break;
     }
   }
+  branch.bifurcations = locate_bifurcations(branch.points, shooting_.multiplier_tolerance);
   return result;
 }
 
