@@ -16,8 +16,9 @@
 //  * a Converged orbit (Shooting or a continuation point) closes: one period re-run from its
 //    (mode, t0, x0, period) with the same options ends with Success in its start mode and
 //    max_i |x_i(T) - x_i(0)| over (x, x') within Shooting::tolerance_at(x0) (the criterion the
-//    orbit claims to meet; the re-run repeats the last Newton run, so only a stale or misreported
-//    x0 fails it);
+//    orbit claims to meet; with the sensitivities out of the error control the re-run takes the
+//    last Newton run's steps, so only a stale or misreported x0 fails it; with them in, the plain
+//    run's steps are no shorter and its x(T) differs by the integration error);
 //  * on that re-run, without belt (v = x'), the energy identity of the run closes:
 //    [W] - [D] = [m x'^2 / 2 + k x^2 / 2] to 1e3 (rtol scale + atol), scale = |[W]| + |[D]| + both
 //    energies: the quadratures are integrated with the state under the same error control, so a

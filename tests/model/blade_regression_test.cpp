@@ -18,6 +18,7 @@
 #include "blade_damper/blade_run.hpp"
 #include "blade_damper/blade_scene.hpp"
 #include "blade_damper/blade_sweep.hpp"
+#include "model/force_reader.hpp"
 
 #include <gtest/gtest.h>
 
@@ -181,6 +182,58 @@ TEST(BladeRegressionRecord, RegenerateWhenAsked) {
   const char* path = std::getenv("STICKSLIP_REGENERATE_BLADE_PINS");
   if (!path) GTEST_SKIP() << "STICKSLIP_REGENERATE_BLADE_PINS not set";
   write_record(path);
+}
+
+}  // namespace
+
+namespace {
+
+// Reading outputs must not perturb a run, on the blade example's own scene: the exponential
+// method (rtol 1e-9, atol 1e-12, as `blade_damper --compare integrator=exponential:1e-9`) at
+// N0 = 2.6 N, where both dampers stick and slip, over 2 s with samples every 1e-4 s (the
+// example's output rate), once with an observer that only counts the samples and once with one
+// that calls evaluate() on the system at each (as a recorder of forces does). Reference: the
+// first run; the second must reproduce it bitwise (final state, events, right-hand-side
+// evaluations, switches at the same times).
+TEST(BladeObserverIndependence, EvaluatingForcesAtSamplesLeavesTheExponentialRunBitwiseUnchanged) {
+  constexpr double duration = 2.0;  // [s]: ~1000 stick-slip switches; two runs, ~2.5 s at -O1
+  System::State x_end[2];
+  long rhs[2] = {0, 0}, events[2] = {0, 0};
+  std::vector<System::ContactEvent> switches[2];
+  for (int read = 0; read < 2; ++read) {
+    blade::BladeParameters p;
+    p.preload = 2.6;
+    blade::BladeScene scene = blade::make_blade_scene(p);
+    System& sys = *scene.system;
+    auto x0 = sys.initial_state();
+    auto mode = sys.requested_mode();
+    ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+    stickslip::RunOptions<double> run = blade::default_settings().run;
+    run.integrator = stickslip::Integrator::Exponential;
+    run.stepper.rtol = 1e-9;
+    run.stepper.atol = 1e-12;
+    run.stepper.output_interval = 1e-4;
+    model_test::ForceReader<System> reader;
+    reader.sys = &sys;
+    reader.read = read == 1;
+    const auto r = stickslip::simulate(sys, mode, 0.0, x0, duration, run, reader);
+    ASSERT_EQ(r.status, stickslip::Status::Success) << r.message;
+    x_end[read] = r.x;
+    rhs[read] = r.stats.rhs_evaluations;
+    events[read] = r.stats.events;
+    switches[read] = sys.events();
+  }
+  // A run with many switches (1032 measured), else the comparison is of a linear run.
+  EXPECT_GE(switches[0].size(), 500u);
+  EXPECT_EQ(events[1], events[0]);
+  EXPECT_EQ(rhs[1], rhs[0]);
+  ASSERT_EQ(switches[1].size(), switches[0].size());
+  for (std::size_t k = 0; k < switches[0].size(); ++k) {
+    ASSERT_EQ(switches[1][k].t, switches[0][k].t) << "switch " << k;
+    ASSERT_EQ(switches[1][k].damper, switches[0][k].damper) << "switch " << k;
+    ASSERT_EQ(switches[1][k].to, switches[0][k].to) << "switch " << k;
+  }
+  EXPECT_TRUE(x_end[1] == x_end[0]) << "largest difference " << (x_end[1] - x_end[0]).cwiseAbs().maxCoeff();
 }
 
 }  // namespace

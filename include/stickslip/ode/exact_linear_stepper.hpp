@@ -296,6 +296,14 @@ class ExactLinearStepper {
                        Scalar db, Scalar sb, Bracket& out, StepperStats& st);
   // Earliest event in [t_, t1]; on true, xe_ holds the exact state at the returned time te_.
   bool find_event(const Mode& m, Scalar t1, StepperStats& st);
+  // After find_event placed an event at te_: when a guard that fired was disarmed but lies more
+  // than the zero tolerance on its safe side at a point tc of the solution inside (t_, te_) (the
+  // middle and quarter points), it left zero and came back within the step: a new crossing, not
+  // an immediate one. The step is then cut back to tc (exact modes: the exact state there;
+  // inexact ones: a step of the method re-taken to tc, h and err its size and error estimate),
+  // with t1, y1_, x1_ (r1_) and the guards gb_, sb_ at tc, so that it ends where the guard is
+  // armed, and true is returned. False (nothing changed) otherwise.
+  bool cut_back_to_rearm(const Mode& m, Scalar& t1, Scalar& h, Scalar& err, StepperStats& st);
   // Inexact modes: y at tau in [t_, t_ + step_h_] on the dense output of the accepted Lawson step
   // into ys_ (built at its first use, before any trial step); false where it is not usable
   // (LawsonDormandPrince::dense_usable), then trial steps are re-taken from t_.
@@ -979,6 +987,53 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
 }
 
 template <class System>
+bool ExactLinearStepper<System>::cut_back_to_rearm(const Mode& m, Scalar& t1, Scalar& h,
+                                                   Scalar& err, StepperStats& st) {
+  bool disarmed = false;
+  for (Eigen::Index i : triggered_) disarmed = disarmed || monitor_.disarmed(i);
+  if (!disarmed || !(te_ > t_)) return false;
+  for (const Scalar frac : {Scalar(0.5), Scalar(0.25), Scalar(0.75)}) {
+    const Scalar tc = t_ + frac * (te_ - t_);
+    if (!(tc > t_ && tc < te_)) continue;
+    if (!eval_point(m, tc, kGuards | kSystemGuards, st)) continue;
+    bool out = true;
+    for (Eigen::Index i : triggered_)
+      out = out && (!monitor_.disarmed(i) || monitor_.out_of_zero(i, gt_[i]));
+    if (!out) continue;
+    if (exact_) {
+      if (!eval_point(m, tc, kQuadratures, st)) continue;
+      y1_ = ys_;
+    } else {
+      // A step of the run (its stages serve the dense output of [t_, tc]); shorter than the
+      // accepted one, so within its tolerance.
+      const Scalar hc = tc - t_;
+      const Scalar e = lawson_.step(
+          flow_,
+          [&](Scalar tt, const Vector& y, Vector& out_r) { return remainder(m, tt, y, out_r, st); },
+          t_, y_, r_, hc, ys_, rs_, opt_.rtol, opt_.atol, work_, true);
+      if (std::isnan(e) || !detail::all_finite(ys_)) continue;
+      y1_ = ys_;
+      r1_ = rs_;
+      h = hc;
+      err = e;
+      step_h_ = hc;
+      dense_ = Dense::Unknown;
+    }
+    t1 = tc;
+    x1_ = y1_.head(nx_);
+    if (closed_form_guards()) {
+      detail::small_product(ghat_, y1_, gb_);
+      detail::small_product(gdot_, y1_, sb_);
+      work_.matvecs += 2;
+    } else if (!end_guards(m, t1, st)) {
+      gb_.setConstant(std::numeric_limits<Scalar>::quiet_NaN());  // (reported by the caller)
+    }
+    return true;
+  }
+  return false;
+}
+
+template <class System>
 bool ExactLinearStepper<System>::dense_point(Scalar tau) {
   if (dense_ == Dense::Unknown) {
     dense_ = lawson_.dense_usable(flow_, step_h_) ? Dense::Ready : Dense::Unusable;
@@ -1237,6 +1292,17 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
       event = !slip_cleared && find_event(mode, t1, st);
     }
 
+    if (event) {
+      // A disarmed guard that left zero and returns inside the step: the step cut back to where
+      // it is out (armed there at the step end); a crossing at the shorter step's end after all
+      // (its state differs from the longer step's by the method's error) is located again.
+      if (cut_back_to_rearm(mode, t1, h, err, st)) {
+        if (!detail::all_finite(x1_) || !detail::all_finite(gb_) || !detail::all_finite(sb_))
+          return finish(r, Status::NonFiniteState, t_, x_, mode,
+                        "state or guards not finite " + detail::at_time(t1));
+        event = find_event(mode, t1, st);
+      }
+    }
     if (event) {
       if (!emit_samples(obs, mode, te_, t1, st))
         return finish(r, Status::StoppedByObserver, te_, xe_, mode,

@@ -205,11 +205,18 @@ auto HybridStepper<System, Method>::initial_step(const Mode& m, Scalar t, Scalar
   // Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4 "Starting step size".
   using std::pow;
   if (opt_.initial_step > 0) return std::min(opt_.initial_step, hmax);
-  const auto scale = opt_.atol + opt_.rtol * x_.array().abs();
-  const Scalar n = static_cast<Scalar>(x_.size());
+  // Over the components under error control only (detail::error_norm): a system that leaves some
+  // out of it (VariationalSystem without control of the sensitivities) starts with the step of a
+  // run of the controlled ones alone, and then takes that run's steps.
+  Eigen::Index nc = x_.size();
+  if constexpr (detail::has_controlled_size<System>::value)
+    nc = std::min<Eigen::Index>(nc, sys_.controlled_size());
+  const auto scale = opt_.atol + opt_.rtol * x_.head(nc).array().abs();
+  const Scalar n = static_cast<Scalar>(nc);
   // An exactly zero component counts 0 even where its scale is 0 (atol = 0): no 0/0.
   auto rms = [&](const auto& v) {
-    return std::sqrt((v.array() == Scalar(0)).select(Scalar(0), v.array() / scale).square().sum() / n);
+    return std::sqrt(
+        (v.head(nc).array() == Scalar(0)).select(Scalar(0), v.head(nc).array() / scale).square().sum() / n);
   };
   const Scalar d0 = rms(x_);
   const Scalar d1 = rms(f_);
