@@ -2,6 +2,7 @@
 // integration error and converges with the tolerance; every sample and every switch satisfies
 // Coulomb's conditions (checked with point values from component 3 directly); dampers in mirror-
 // symmetric positions switch together; a three-damper, three-law scene passes its audit.
+#include "force_reader.hpp"
 #include "model_test_scenes.hpp"
 
 #include <algorithm>
@@ -265,21 +266,7 @@ namespace {
 // every sample (as a recorder of forces does) must leave the trajectory bitwise unchanged, for
 // every integrator, on a scene with stick-slip switches (the paper's dampers at 3 N: both stick
 // and slip, moving contacts). Reference: the same run with an observer that only counts.
-struct ForceReader : NullObserver {
-  System* sys = nullptr;
-  bool read = false;
-  long samples = 0;
-  double sum = 0;
-  template <class Scalar, class State, class Mode>
-  bool on_sample(Scalar t, const State& x, const Mode& m) {
-    ++samples;
-    if (read) {
-      const auto& e = sys->evaluate(m, t, x);
-      sum += e.N.sum() + e.f.sum();
-    }
-    return true;
-  }
-};
+using ForceReader = model_test::ForceReader<System>;
 
 TEST(ObserverIndependence, EvaluatingForcesAtSamplesLeavesEveryIntegratorsRunBitwiseUnchanged) {
   const StickSlipScene scene;
