@@ -1,7 +1,8 @@
 #pragma once
 // The Python module's guards of long calls (docs/python.md, "Threads and interrupts"):
 //
-// - PySystem and PyContactSystem, the Python FrictionDampedSystem and ContactSystem: the C++
+// - PySystem, PyContactSystem and PyBodyContactSystem, the Python FrictionDampedSystem,
+//   ContactSystem and BodyContactSystem: the C++
 //   system and a lock. A system's evaluation
 //   workspace, factorisation, event and impact logs are mutable (docs/architecture.md, "Thread
 //   safety"), so two runs on one system at once would corrupt each other; every call that runs
@@ -38,6 +39,7 @@ using System = stickslip::FrictionDampedSystem<double>;
 template <class Base>
 class Locked : public Base {
  public:
+  using Wrapped = Base;  ///< the C++ system
   using Base::Base;
   explicit Locked(const Base& s) : Base(s) {}
   /// A copy has its own (free) lock.
@@ -58,6 +60,8 @@ class Locked : public Base {
 using PySystem = Locked<System>;
 /// The Python ContactSystem.
 using PyContactSystem = Locked<stickslip::ContactSystem<double>>;
+/// The Python BodyContactSystem: a ContactSystem over contacts of rigid-body points.
+using PyBodyContactSystem = Locked<stickslip::ContactSystem<double, stickslip::BodyContact<double>>>;
 
 /// How often a call with the GIL released looks for signals (and how long a wait for a system's
 /// lock lasts between two looks): often enough for Ctrl-C to feel immediate, rarely enough that
@@ -150,8 +154,9 @@ auto with_system(const Locked<Base>& system, F&& f) {
 
 /// A copy of `system` made under its lock (e.g. a system returned by a Python callable, which
 /// another thread may be running). Called with the GIL held.
-inline System copy_of(const PySystem& system) {
-  return with_system(system, [&](SignalCheck&) { return System(system); });
+template <class Base>
+Base copy_of(const Locked<Base>& system) {
+  return with_system(system, [&](SignalCheck&) { return Base(system); });
 }
 
 }  // namespace stickslip_python

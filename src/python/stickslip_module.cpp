@@ -26,6 +26,7 @@
 #include <tuple>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 namespace py = pybind11;
@@ -53,10 +54,12 @@ using namespace stickslip;
 using Index = Eigen::Index;
 using System = FrictionDampedSystem<double>;
 using CSystem = ContactSystem<double>;
+using BSystem = ContactSystem<double, BodyContact<double>>;
 using State = System::State;
 using Mode = System::Mode;
 using Law = FrictionLawVariant<double>;
 using stickslip_python::copy_of;
+using stickslip_python::PyBodyContactSystem;
 using stickslip_python::PyContactSystem;
 using stickslip_python::PySystem;
 using stickslip_python::SignalCheck;
@@ -156,7 +159,7 @@ struct Run {
   StepperStats stats;
   double E0 = 0;
   std::optional<System::EnergyBalance> energy;          // a FrictionDampedSystem's audit
-  std::optional<CSystem::EnergyBalance> contact_energy;  // a ContactSystem's audit
+  std::optional<std::variant<CSystem::EnergyBalance, BSystem::EnergyBalance>> contact_energy;  // a ContactSystem's
   std::vector<double> sample_t;
   std::vector<State> samples;  // empty unless record_states
   std::vector<std::vector<ContactState>> sample_modes;
@@ -233,19 +236,22 @@ class Recorder {
 double start_energy(System& system, const Mode& mode, double t, const State& x) {
   return system.mechanical_energy(mode, t, x);
 }
-double start_energy(CSystem& system, const Mode&, double, const State& x) { return system.mechanical_energy(x); }
+template <class Contact>
+double start_energy(ContactSystem<double, Contact>& system, const Mode&, double, const State& x) {
+  return system.mechanical_energy(x);
+}
 
 /// simulate() from (mode, t0, x0) - by default the system's initial state made consistent - to
 /// t_end, recording as asked. The GIL is released and the system's lock held while the stepper
-/// runs; Ctrl-C stops it (KeyboardInterrupt). Py: PySystem or PyContactSystem (no probes nor
-/// statistics: ValueError naming them).
+/// runs; Ctrl-C stops it (KeyboardInterrupt). Py: PySystem, PyContactSystem or PyBodyContactSystem (the
+/// last two: no probes nor statistics, ValueError naming them).
 template <class Py>
 Run run_simulation(Py& py_system, double t_end, const RunOptions<double>& options, double t0,
                    std::optional<State> x0, std::optional<std::vector<ContactState>> mode0,
                    const std::vector<Probe>& probes, bool record_states, double evaluate_from,
                    std::optional<StatisticsWindow<double>> window, bool consistent) {
-  constexpr bool kContacts = std::is_same_v<Py, PyContactSystem>;
-  using Sys = std::conditional_t<kContacts, CSystem, System>;
+  constexpr bool kContacts = !std::is_same_v<Py, PySystem>;
+  using Sys = typename Py::Wrapped;
   if (std::isnan(evaluate_from))  // every comparison with NaN is false: nothing would be recorded
     throw std::invalid_argument("simulate: evaluate_from must be a time or inf (no forces), got nan");
   if constexpr (kContacts) {
@@ -819,11 +825,129 @@ void bind_system(py::module_& m) {
       "structure; modal damping is left out (docs/model.md).");
 }
 
-/// Evaluation of a ContactSystem as a dict of arrays.
-py::dict to_dict(const CSystem::Evaluation& e) {
-  py::dict d;
-  d["qdd"] = e.qdd, d["f"] = e.f, d["v"] = e.v, d["N"] = e.N, d["finite"] = e.finite;
-  return d;
+/// The Python class of ContactSystem<double, Contact> (Py: PyContactSystem or PyBodyContactSystem):
+/// its nested ContactEvent and EnergyBalance and every member but the constructor, which differs
+/// (a BodyContactSystem takes the bodies).
+template <class Py>
+py::class_<Py> bind_contact_system(py::module_& m, const char* name, const char* doc) {
+  using Sys = typename Py::Wrapped;
+  const std::string cname(name);
+  py::class_<Py> cls(m, name, doc);
+  py::class_<typename Sys::ContactEvent>(cls, "ContactEvent", "One contact's switch.")
+      .def_readonly("t", &Sys::ContactEvent::t, "time of the switch [s]")
+      .def_readonly("contact", &Sys::ContactEvent::contact, "which contact switched")
+      .def_readonly("from_state", &Sys::ContactEvent::from, "its state before")
+      .def_readonly("to_state", &Sys::ContactEvent::to, "its state after");
+  using Balance = typename Sys::EnergyBalance;
+  py::class_<Balance>(cls, "EnergyBalance", "The energy audit: (E - E0) - (W_ext - D_visc - D_fric) = residual [J].")
+      .def_readonly("mechanical", &Balance::mechanical,
+                    "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 + the bodies' kinetic and spring energy [J]")
+      .def_readonly("external_work", &Balance::external_work, "W_ext: work of the point and body loads [J]")
+      .def_readonly("viscous_dissipation", &Balance::viscous_dissipation, "D_visc: modal damping and dashpots [J]")
+      .def_readonly("friction_dissipation", &Balance::friction_dissipation,
+                    "D_fric: friction work, stuck projections and impacts [J]")
+      .def_readonly("residual", &Balance::residual, "(E - E0) - (W_ext - D_visc - D_fric) [J]")
+      .def_readonly("scale", &Balance::scale, "largest magnitude of the terms [J]")
+      .def("relative_residual", &Balance::relative_residual, "|residual| / scale (0 when every term is 0).");
+  cls.def("num_modes", [](const Py& s) { return s.num_modes(); }, "n, the number of retained modes.")
+      .def("num_bodies", [](const Py& s) { return s.num_bodies(); }, "B, the number of rigid bodies.")
+      .def("num_coordinates", [](const Py& s) { return s.num_coordinates(); },
+           "n + 3B: the modal coordinates q, then each body's (x [m], y [m], theta [rad]).")
+      .def("num_contacts", [](const Py& s) { return s.num_contacts(); }, "D, the number of contacts.")
+      .def("state_size", [](const Py& s) { return s.state_size(); },
+           "2 num_coordinates() (+ 3 with the energy audit): [z, z', W_ext, D_visc, D_fric].")
+      .def("audit_offset", [](const Py& s) { return s.audit_offset(); },
+           "Index of the first audit integral (W_ext, D_visc, D_fric): 2 num_coordinates().")
+      .def(
+          "body_offset",
+          [cname](const Py& s, Index b) {
+            if (b < 0 || b >= s.num_bodies())
+              detail::throw_invalid(cname + ".body_offset",
+                                    "b must be in [0, num_bodies() = " + std::to_string(s.num_bodies()) + ")", b);
+            return s.body_offset(b);
+          },
+          py::arg("b"), "Index of body b's x in the state (y, theta follow; their rates num_coordinates() later).")
+      .def("contacts", [](const Py& s) { return s.contacts(); }, "The contacts (copies).")
+      .def("bodies", [](const Py& s) { return s.bodies(); }, "The rigid bodies (copies).")
+      .def("loads", [](const Py& s) { return s.loads(); }, "The point loads (copies).")
+      .def("options", [](const Py& s) { return s.options(); }, "The ContactSystemOptions (a copy).")
+      .def("linear_rates", [](const Py& s) { return s.linear_rates(); },
+           "Roots [1/s] (complex) of s^2 + c_j s + omega_j^2 of every mode and of m s^2 + c s + k of each body's "
+           "springs along x and y (the fixed-step stability check).")
+      .def(
+          "contact_row",
+          [cname](const Py& s, Index i) {
+            if (i < 0 || i >= s.num_contacts())
+              detail::throw_invalid(cname + ".contact_row",
+                                    "i must be in [0, num_contacts() = " + std::to_string(s.num_contacts()) + ")", i);
+            return Eigen::VectorXd(s.contact_row(i));
+          },
+          py::arg("i"),
+          "Structure part w_i of contact i's sliding-velocity row (without bodies its slip s_i = w_i . q [m], "
+          "v_i = w_i . q' [m/s]).")
+      .def("initial_state", &Py::initial_state, "Rest: z = z' = 0, audit integrals 0.")
+      .def("requested_mode", [](const Py& s) { return to_list(s.requested_mode()); }, "Each contact's initial_state.")
+      .def(
+          "make_consistent",
+          [cname](Py& s, std::vector<ContactState> mode, double t, State x) {
+            Mode md = to_mode(mode);
+            const std::string where = cname + ".make_consistent";
+            const bool ok = with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, where.c_str());
+              return s.make_consistent(md, t, x);
+            });
+            return py::make_tuple(ok, to_list(md), x);
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "(ok, mode, x) made consistent at t [s]: a contact with |v| above the velocity tolerance slides in sgn(v), "
+          "one at rest sticks unless its force exceeds mu_s N; a closed unilateral contact under tension opens; "
+          "stuck and closed velocities are projected to 0.")
+      .def(
+          "evaluate",
+          [cname](Py& s, const std::vector<ContactState>& mode, double t, const State& x) {
+            const Mode md = to_mode(mode);
+            const std::string where = cname + ".evaluate";
+            const typename Sys::Evaluation e = with_system(s, [&](SignalCheck&) {
+              s.validate_state(md, x, where.c_str());
+              return s.evaluate(md, t, x);  // a copy, made under the lock
+            });
+            py::dict d;
+            d["qdd"] = e.qdd, d["f"] = e.f, d["v"] = e.v, d["N"] = e.N, d["vn"] = e.vn, d["gap"] = e.gap;
+            d["finite"] = e.finite;
+            return d;
+          },
+          py::arg("mode"), py::arg("t"), py::arg("x"),
+          "Forces and kinematics at (mode, t, x): dict of qdd (z''), f (friction force on side a along its tangent "
+          "[N]), v (sliding velocity [m/s]), N (normal force [N]; 0 for an open contact), vn (normal velocity [m/s]), "
+          "gap [m] (vn and gap 0 under a held normal) and finite.")
+      .def(
+          "events", [](const Py& s) { return with_system(s, [&](SignalCheck&) { return s.events(); }); },
+          "The contact switches (ContactEvent) logged since construction or clear_events().")
+      .def("clear_events", [](Py& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); },
+           "Forgets the logged switches.")
+      .def(
+          "mechanical_energy",
+          [cname](const Py& s, const State& x) {
+            const std::string where = cname + ".mechanical_energy";
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(s.requested_mode(), x, where.c_str());
+              return s.mechanical_energy(x);
+            });
+          },
+          py::arg("x"),
+          "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 + sum_b (m |V|^2 + J omega^2) / 2 + sum_springs k delta^2 / 2 [J].")
+      .def(
+          "energy_balance",
+          [cname](const Py& s, const State& x, double E0) {
+            const std::string where = cname + ".energy_balance";
+            return with_system(s, [&](SignalCheck&) {
+              s.validate_state(s.requested_mode(), x, where.c_str());
+              return s.energy_balance(x, E0);
+            });
+          },
+          py::arg("x"), py::arg("E0"),
+          "The energy audit at x from the start's energy E0 [J] (ValueError when options.energy_audit is off).");
+  return cls;
 }
 
 void bind_contacts(py::module_& m) {
@@ -911,108 +1035,173 @@ void bind_contacts(py::module_& m) {
       .def_readwrite("velocity_tolerance", &COptions::velocity_tolerance,
                      "|v| [m/s] at or below which v counts as 0 where a contact's state is decided");
 
-  py::class_<PyContactSystem> cls(
+  auto cls = bind_contact_system<PyContactSystem>(
       m, "ContactSystem",
       "A frame's retained modes + friction contacts at structure points (PointContact) + point loads: q'' = r + "
       "sum_i w_i f_i with contact rows w_i (s_i = w_i . q) (docs/contacts.md). State [q, q', W_ext, D_visc, "
       "D_fric] (the last three with the energy audit). Calls that run or evaluate one system from several threads "
       "run one after the other (docs/python.md).");
-  py::class_<CSystem::ContactEvent>(cls, "ContactEvent", "One contact's switch.")
-      .def_readonly("t", &CSystem::ContactEvent::t, "time of the switch [s]")
-      .def_readonly("contact", &CSystem::ContactEvent::contact, "which contact switched")
-      .def_readonly("from_state", &CSystem::ContactEvent::from, "its state before")
-      .def_readonly("to_state", &CSystem::ContactEvent::to, "its state after");
-  using Balance = CSystem::EnergyBalance;
-  py::class_<Balance>(cls, "EnergyBalance", "The energy audit: (E - E0) - (W_ext - D_visc - D_fric) = residual [J].")
-      .def_readonly("mechanical", &Balance::mechanical, "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J]")
-      .def_readonly("external_work", &Balance::external_work, "W_ext [J]")
-      .def_readonly("viscous_dissipation", &Balance::viscous_dissipation, "D_visc [J]")
-      .def_readonly("friction_dissipation", &Balance::friction_dissipation, "D_fric [J]")
-      .def_readonly("residual", &Balance::residual, "(E - E0) - (W_ext - D_visc - D_fric) [J]")
-      .def_readonly("scale", &Balance::scale, "largest magnitude of the terms [J]")
-      .def("relative_residual", &Balance::relative_residual, "|residual| / scale (0 when every term is 0).");
   cls.def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<Contact>,
                    std::vector<PointLoad<double>>, COptions>(),
           py::arg("frame"), py::arg("basis"), py::arg("contacts"), py::arg("loads") = std::vector<PointLoad<double>>{},
           py::arg("options") = COptions{},
           "Assembles each contact's row from `frame` and `basis` (a basis of that frame). ValueError naming the "
           "contact and the parameter: a side off its member (coordinate), a non-unit direction, a non-positive "
-          "normal.value, a contact that cannot slip (zero row), ...")
-      .def("num_modes", [](const PyContactSystem& s) { return s.num_modes(); }, "n, the number of retained modes.")
-      .def("num_contacts", [](const PyContactSystem& s) { return s.num_contacts(); }, "D, the number of contacts.")
-      .def("state_size", [](const PyContactSystem& s) { return s.state_size(); }, "2n (+ 3 with the energy audit).")
-      .def("audit_offset", [](const PyContactSystem& s) { return s.audit_offset(); },
-           "Index of the first audit integral (W_ext, D_visc, D_fric): 2n.")
-      .def("contacts", [](const PyContactSystem& s) { return s.contacts(); }, "The contacts (copies of the PointContacts).")
-      .def("loads", [](const PyContactSystem& s) { return s.loads(); }, "The point loads (copies).")
-      .def("options", [](const PyContactSystem& s) { return s.options(); }, "The ContactSystemOptions (a copy).")
-      .def("linear_rates", [](const PyContactSystem& s) { return s.linear_rates(); },
-           "Roots [1/s] (complex) of s^2 + c_j s + omega_j^2 of every mode (the fixed-step stability check).")
-      .def(
-          "contact_row",
-          [](const PyContactSystem& s, Index i) {
-            if (i < 0 || i >= s.num_contacts())
-              detail::throw_invalid("ContactSystem.contact_row",
-                                    "i must be in [0, num_contacts() = " + std::to_string(s.num_contacts()) + ")", i);
-            return Eigen::VectorXd(s.contact_row(i));
-          },
-          py::arg("i"), "Row w_i of contact i: its slip s_i = w_i . q [m], v_i = w_i . q' [m/s].")
-      .def("initial_state", &PyContactSystem::initial_state, "Rest: q = q' = 0, audit integrals 0.")
-      .def("requested_mode", [](const PyContactSystem& s) { return to_list(s.requested_mode()); },
-           "Each contact's initial_state.")
-      .def(
-          "make_consistent",
-          [](PyContactSystem& s, std::vector<ContactState> mode, double t, State x) {
-            Mode md = to_mode(mode);
-            const bool ok = with_system(s, [&](SignalCheck&) {
-              s.validate_state(md, x, "ContactSystem.make_consistent");
-              return s.make_consistent(md, t, x);
-            });
-            return py::make_tuple(ok, to_list(md), x);
-          },
-          py::arg("mode"), py::arg("t"), py::arg("x"),
-          "(ok, mode, x) made consistent at t [s]: a contact with |v| above the velocity tolerance slides in sgn(v), "
-          "one at rest sticks unless its force exceeds mu_s N; stuck velocities are projected to 0.")
-      .def(
-          "evaluate",
-          [](PyContactSystem& s, const std::vector<ContactState>& mode, double t, const State& x) {
-            const Mode md = to_mode(mode);
-            const CSystem::Evaluation e = with_system(s, [&](SignalCheck&) {
-              s.validate_state(md, x, "ContactSystem.evaluate");
-              return s.evaluate(md, t, x);  // a copy, made under the lock
-            });
-            return to_dict(e);
-          },
-          py::arg("mode"), py::arg("t"), py::arg("x"),
-          "Forces and kinematics at (mode, t, x): dict of qdd, f (friction force on side a along d [N]), v (sliding "
-          "velocity [m/s]), N (normal force [N]) and finite.")
-      .def(
-          "events", [](const PyContactSystem& s) { return with_system(s, [&](SignalCheck&) { return s.events(); }); },
-          "The contact switches (ContactSystem.ContactEvent) logged since construction or clear_events().")
-      .def("clear_events", [](PyContactSystem& s) { with_system(s, [&](SignalCheck&) { s.clear_events(); }); },
-           "Forgets the logged switches.")
-      .def(
-          "mechanical_energy",
-          [](const PyContactSystem& s, const State& x) {
-            return with_system(s, [&](SignalCheck&) {
-              s.validate_state(s.requested_mode(), x, "ContactSystem.mechanical_energy");
-              return s.mechanical_energy(x);
-            });
-          },
-          py::arg("x"), "E = q'.q'/2 + sum omega_j^2 q_j^2 / 2 [J].")
-      .def(
-          "energy_balance",
-          [](const PyContactSystem& s, const State& x, double E0) {
-            return with_system(s, [&](SignalCheck&) {
-              s.validate_state(s.requested_mode(), x, "ContactSystem.energy_balance");
-              return s.energy_balance(x, E0);
-            });
-          },
-          py::arg("x"), py::arg("E0"),
-          "The energy audit at x from the start's energy E0 [J] (ValueError when options.energy_audit is off).");
+          "normal.value, a contact that cannot slip (zero row), ...");
 }
 
-/// simulate() for one system type (Py: PySystem or PyContactSystem).
+/// Rigid bodies, body contacts, the wedge damper and BodyContactSystem (docs/contacts.md, "Rigid
+/// bodies"; docs/python.md, "Rigid bodies and the wedge damper").
+void bind_bodies(py::module_& m) {
+  using Direction = PlaneDirection<double>;
+  using Vec2 = Eigen::Vector2d;
+  using BPoint = BodyPoint<double>;
+  using Spring = BodySpring<double>;
+  using BLoad = BodyLoad<double>;
+  using Body = RigidBody<double>;
+  using BContact = BodyContact<double>;
+  using Face = WedgeFace<double>;
+  using Wedge = WedgeDamper<double>;
+  using COptions = ContactSystemOptions<double>;
+  py::class_<BPoint>(m, "BodyPoint",
+                     "A point of a rigid body: the body's index in the scene and r [m] in body coordinates (from "
+                     "the centre of mass, in the reference orientation).")
+      .def(py::init([](Index body, const Vec2& point) { return BPoint{body, point}; }), py::arg("body"),
+           py::arg("point"), "The point r = point [m] (2 entries) of body `body`.")
+      .def_readwrite("body", &BPoint::body, "index of the body in the scene")
+      .def_readwrite("point", &BPoint::point, "r [m] in body coordinates");
+  py::class_<Spring>(m, "BodySpring",
+                     "A linear spring k and dashpot c to ground along the global unit direction d, at body point r: "
+                     "force -(k delta + c delta') d with delta = d . ((x, y) + (R(theta) - I) r).")
+      .def(py::init([](const Vec2& point, const Direction& direction, double stiffness, double damping) {
+             return Spring{point, direction, stiffness, damping};
+           }),
+           py::arg("point"), py::arg("direction"), py::arg("stiffness"), py::arg("damping") = 0.0,
+           "A spring of stiffness [N/m] >= 0 and dashpot damping [N s/m] >= 0 at r = point [m] along `direction`.")
+      .def_readwrite("point", &Spring::point, "r [m] in body coordinates")
+      .def_readwrite("direction", &Spring::direction, "d (global unit vector)")
+      .def_readwrite("stiffness", &Spring::stiffness, "k [N/m] >= 0")
+      .def_readwrite("damping", &Spring::damping, "c [N s/m] >= 0");
+  py::class_<BLoad>(m, "BodyLoad", "A force F(t) d [N] at a body's centre of mass along the global unit direction d.")
+      .def(py::init([](const Direction& direction, double value, const py::object& time_function) {
+             BLoad l;
+             l.direction = direction;
+             l.value = value;
+             l.time_function = python_time_function(time_function, "BodyLoad", "F");
+             return l;
+           }),
+           py::arg("direction"), py::arg("value") = 0.0, py::arg("time_function") = py::none(),
+           "The constant force `value` [N] along `direction`, or time_function(t) [N] when given.")
+      .def_readwrite("direction", &BLoad::direction, "d (global unit vector)")
+      .def_readwrite("value", &BLoad::value, "constant F [N]")
+      .def_property(
+          "time_function", [](const BLoad& l) { return l.time_function; },
+          [](BLoad& l, const py::object& f) { l.time_function = python_time_function(f, "BodyLoad", "F"); },
+          "optional F(t) [N] (a Python callable, called with the GIL: slower); None: the constant value")
+      .def("__call__", &BLoad::operator(), py::arg("t"), "F(t) [N].")
+      .def_static("centrifugal", &BLoad::centrifugal, py::arg("mass"), py::arg("radius"), py::arg("Omega"),
+                  py::arg("radial"),
+                  "The centrifugal preload m r Omega^2 [N] of a body of mass [kg] at radius [m] on a rotor turning "
+                  "at Omega [rad/s], along the unit direction `radial`.");
+  py::class_<Body>(m, "RigidBody",
+                   "A planar rigid body: mass m, rotary inertia J about its centre of mass, springs and dashpots to "
+                   "ground, loads at the centre of mass; coordinates (x, y, theta) from its reference position.")
+      .def(py::init([](double mass, double inertia, std::vector<Spring> springs, std::vector<BLoad> loads) {
+             Body b;
+             b.mass = mass;
+             b.inertia = inertia;
+             b.springs = std::move(springs);
+             b.loads = std::move(loads);
+             return b;
+           }),
+           py::arg("mass") = 1.0, py::arg("inertia") = 1.0, py::arg("springs") = std::vector<Spring>{},
+           py::arg("loads") = std::vector<BLoad>{},
+           "A body of mass [kg] > 0 and inertia [kg m^2] > 0 (checked by the system: ValueError naming them).")
+      .def_readwrite("mass", &Body::mass, "m [kg] > 0")
+      .def_readwrite("inertia", &Body::inertia, "J about the centre of mass [kg m^2] > 0")
+      .def_readwrite("springs", &Body::springs, "springs and dashpots to ground (a copy: assign a new list)")
+      .def_readwrite("loads", &Body::loads, "loads at the centre of mass (a copy: assign a new list)");
+  py::class_<BContact>(m, "BodyContact",
+                       "A friction contact of a body point (side a) on a structure point or ground (side b) with a "
+                       "unilateral normal: n from b towards a, tangent t = (n_y, -n_x); the normal force is solved, "
+                       "the contact lifts off at N = 0 and lands at gap 0 with restitution e (docs/contacts.md).")
+      .def_static(
+          "on_ground",
+          [](const BPoint& point, const Direction& normal, const py::object& law, double restitution) {
+            return BContact::on_ground(point, normal, to_law(law, "BodyContact.on_ground"), restitution);
+          },
+          py::arg("point"), py::arg("normal"), py::arg("law"), py::arg("restitution") = 0.0,
+          "`point` on ground whose surface has the unit normal `normal`, with `law` (CoulombLaw, StribeckLaw or "
+          "RegularisedLaw) and restitution e in [0, 1].")
+      .def_static(
+          "on_structure",
+          [](const BPoint& point, const StructurePoint<double>& surface, const Direction& normal,
+             const py::object& law, double restitution) {
+            return BContact::on_structure(point, surface, normal, to_law(law, "BodyContact.on_structure"),
+                                          restitution);
+          },
+          py::arg("point"), py::arg("surface"), py::arg("normal"), py::arg("law"), py::arg("restitution") = 0.0,
+          "`point` on the structure point `surface` whose surface has the unit normal `normal`, with `law` and "
+          "restitution e in [0, 1].")
+      .def_readwrite("a", &BContact::a, "side a: the BodyPoint")
+      .def_readwrite("b", &BContact::b, "side b: a StructurePoint, or None for ground")
+      .def_readwrite("normal", &BContact::normal, "n (global unit vector, from b towards a)")
+      .def_property(
+          "friction", [](const BContact& c) { return c.friction; },
+          [](BContact& c, const py::object& law) { c.friction = to_law(law, "BodyContact"); },
+          "the friction law (CoulombLaw, StribeckLaw or RegularisedLaw)")
+      .def_readwrite("restitution", &BContact::restitution, "e in [0, 1] of a landing (0: perfectly plastic)")
+      .def_readwrite("initial_gap", &BContact::initial_gap, "g0 [m] >= 0: the gap with every coordinate zero")
+      .def_readwrite("initial_state", &BContact::initial_state,
+                     "state at the start of a run: Stick (default), SlipPositive, SlipNegative or Separated")
+      .def("law", [](const BContact& c) { return c.law(); }, "The friction law.")
+      .def("start_state", &BContact::start_state, "The contact state at the start of a run.")
+      .def("tangent_direction", &BContact::tangent_direction, "t = (n_y, -n_x).");
+  py::class_<Face>(m, "WedgeFace", "One flat face of a wedge damper (docs/contacts.md, \"The wedge damper\").")
+      .def(py::init([](std::vector<StructurePoint<double>> platform, const Vec2& point, double angle,
+                       double half_width) { return Face{std::move(platform), point, angle, half_width}; }),
+           py::arg("platform"), py::arg("point"), py::arg("angle"), py::arg("half_width") = 0.0,
+           "A face touching the platform points `platform` (none: ground; one; or two, under p -+ w t) at p = point "
+           "[m] (body coordinates), at `angle` [rad] in (-pi/2, pi/2) from the plane normal to the load, with "
+           "half_width w [m] >= 0 (0: one contact point, > 0: two at p -+ w t).")
+      .def_readwrite("platform", &Face::platform, "the platform's StructurePoints (empty: ground)")
+      .def_readwrite("point", &Face::point, "p on the face, body coordinates [m]")
+      .def_readwrite("angle", &Face::angle, "face angle [rad] from the plane normal to the load")
+      .def_readwrite("half_width", &Face::half_width, "w [m] >= 0");
+  py::class_<Wedge>(m, "WedgeDamper", "The body and the contacts of a wedge damper, to pass to BodyContactSystem.")
+      .def(py::init<>(), "An empty damper (wedge_damper() builds one).")
+      .def_readwrite("body", &Wedge::body, "the damper (RigidBody, its centrifugal load included)")
+      .def_readwrite("contacts", &Wedge::contacts, "BodyContacts: the left face's first, then the right face's");
+  m.def(
+      "wedge_damper",
+      [](Index body, double mass, double inertia, double preload, const Face& left, const Face& right,
+         const py::object& law, const Direction& radial, double restitution) {
+        return wedge_damper<double>(body, mass, inertia, preload, left, right, to_law(law, "wedge_damper"), radial,
+                                    restitution);
+      },
+      py::arg("body"), py::arg("mass"), py::arg("inertia"), py::arg("preload"), py::arg("left"), py::arg("right"),
+      py::arg("law"), py::arg("radial") = Direction::global_y(), py::arg("restitution") = 0.0,
+      "A wedge damper: body index `body` of the scene, mass [kg], inertia [kg m^2], the load `preload` [N] (m r "
+      "Omega^2) along the unit direction `radial`; the left face's outward normal is `radial` turned "
+      "counter-clockwise by its angle, the right one's clockwise; law and restitution on every contact. "
+      "ValueError naming the parameter (left.angle, right.half_width, preload, radial, ...).");
+
+  auto cls = bind_contact_system<PyBodyContactSystem>(
+      m, "BodyContactSystem",
+      "C++ ContactSystem<double, BodyContact<double>>: a frame's retained modes + planar rigid bodies + friction "
+      "contacts of body points (BodyContact, unilateral normals) + point loads: M z'' = r + sum_i (g_i f_i + h_i "
+      "N_i), z = (q, each body's x [m], y [m], theta [rad]) (docs/contacts.md). State [z, z', W_ext, D_visc, D_fric] "
+      "(the last three with the energy audit). Calls on one system from several threads run one after the other.");
+  cls.def(py::init<const FrameModel<double>&, const ModalBasis<double>&, std::vector<Body>, std::vector<BContact>,
+                   std::vector<PointLoad<double>>, COptions>(),
+          py::arg("frame"), py::arg("basis"), py::arg("bodies"), py::arg("contacts"),
+          py::arg("loads") = std::vector<PointLoad<double>>{}, py::arg("options") = COptions{},
+          "Assembles the contacts' rows from `frame` and `basis` (a basis of that frame). ValueError naming the body "
+          "or contact and the parameter: a non-positive mass or inertia, a non-unit normal, a restitution outside "
+          "[0, 1], a contact whose a.body names no body, ...");
+}
+
+/// simulate() for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
 template <class Py>
 void def_simulate(py::module_& m, const char* doc) {
   m.def("simulate", &run_simulation<Py>, py::arg("system"), py::arg("t_end"), py::arg("options") = RunOptions<double>{},
@@ -1165,7 +1354,7 @@ void bind_simulate(py::module_& m) {
           "energy",
           [](const Run& r) -> py::object {
             if (r.energy) return py::cast(*r.energy);
-            if (r.contact_energy) return py::cast(*r.contact_energy);
+            if (r.contact_energy) return std::visit([](const auto& b) { return py::cast(b); }, *r.contact_energy);
             return py::none();
           },
           "the energy audit at t: an EnergyBalance (a ContactSystem's: ContactSystem.EnergyBalance), None without "
@@ -1222,6 +1411,10 @@ void bind_simulate(py::module_& m) {
       "t_end [s]; states [q, q', audit integrals], modes, forces N, f, v (as V) of the contacts from "
       "evaluate_from on; energy: a ContactSystem.EnergyBalance. probes and statistics are not available "
       "(ValueError): a point's displacement is its modal row . q.");
+  def_simulate<PyBodyContactSystem>(
+      m,
+      "A BodyContactSystem's run, as above: states [z, z', audit integrals] (z = q, then each body's x, y, "
+      "theta), forces N, f, v (as V) of the contacts; energy: a BodyContactSystem.EnergyBalance.");
 }
 
 void bind_trade_study(py::module_& m) {
@@ -1383,10 +1576,11 @@ long checked_max_steps(long max_steps, const std::string& where) {
 /// when empty - C++'s "all", here the audit integrals too - or out of range) or by default q,
 /// q', x_d, x_d' (the first 2n + 2D), not the contact coordinates X (a neutral direction) nor
 /// the audit integrals.
-/// The default periodic components: q, q', x_d, x_d' of a FrictionDampedSystem (2n + 2D), q, q' of
-/// a ContactSystem (2n).
+/// The default periodic components: q, q', x_d, x_d' of a FrictionDampedSystem (2n + 2D), z, z' of
+/// a ContactSystem (z = q and the bodies' coordinates: 2n + 6B).
 Index default_periodic_size(const System& system) { return 2 * system.num_modes() + 2 * system.num_dampers(); }
-Index default_periodic_size(const CSystem& system) { return 2 * system.num_modes(); }
+template <class Contact>
+Index default_periodic_size(const ContactSystem<double, Contact>& system) { return 2 * system.num_coordinates(); }
 
 template <class Sys>
 std::vector<Index> periodic_set(const Sys& system, const std::optional<std::vector<Index>>& periodic,
@@ -1427,12 +1621,14 @@ struct PyContinuationPoint {
 };
 
 /// The C++ point as PyContinuationPoint (no Python objects).
-PyContinuationPoint to_py(const ContinuationPoint<System>& pt) {
+template <class Sys>
+PyContinuationPoint to_py(const ContinuationPoint<Sys>& pt) {
   return PyContinuationPoint{pt.parameter, pt.step, pt.stability_changed, to_py(pt.orbit)};
 }
 
 /// The C++ points of a branch as PyContinuationPoints.
-std::vector<PyContinuationPoint> to_py(const std::vector<ContinuationPoint<System>>& points) {
+template <class Sys>
+std::vector<PyContinuationPoint> to_py(const std::vector<ContinuationPoint<Sys>>& points) {
   std::vector<PyContinuationPoint> out;
   out.reserve(points.size());
   for (const auto& pt : points) out.push_back(to_py(pt));
@@ -1469,33 +1665,45 @@ struct PyPoincare {
   std::vector<std::vector<ContactState>> modes;
 };
 
-/// The Python callables of continue_orbits as Continuation's std::functions. They hold no
-/// Python reference (the callables outlive the run: they are continue_orbits' arguments) and
-/// re-acquire the GIL, which the run releases; a Python exception propagates as
-/// py::error_already_set through Continuation::run (which catches nothing) to the caller.
+/// The contacts of a system (continue_orbits checks that parameter(system, p) keeps them).
+Index num_contacts_of(const System& system) { return system.num_dampers(); }
+template <class Contact>
+Index num_contacts_of(const ContactSystem<double, Contact>& system) {
+  return system.num_contacts();
+}
+
+/// The Python callables of continue_orbits as Continuation's std::functions (Py: the Python
+/// system type). They hold no Python reference (the callables outlive the run: they are
+/// continue_orbits' arguments) and re-acquire the GIL, which the run releases; a Python exception
+/// propagates as py::error_already_set through Continuation::run (which catches nothing) to the
+/// caller.
+template <class Py>
 struct ContinuationCallbacks {
+  using Sys = typename Py::Wrapped;
+
   const py::object* parameter = nullptr;   // parameter(system, p) -> the system at p
   const py::object* period = nullptr;      // a float or period(p)
   const py::object* start_mode = nullptr;  // None or start_mode(system, t, x, mode) -> mode
   const py::object* on_point = nullptr;    // None or on_point(point)
   const py::object* start = nullptr;       // None or start(system, p) -> (mode, t0, x0) (parts > 1)
 
-  // The continued systems are PySystems (continue_orbits' system and its copies for parts > 1),
+  // The continued systems are Py objects (continue_orbits' system and its copies for parts > 1),
   // passed to the callables as themselves.
-  static py::object as_python(System& system) {
-    return py::cast(static_cast<PySystem*>(&system), py::return_value_policy::reference);
+  static py::object as_python(Sys& system) {
+    return py::cast(static_cast<Py*>(&system), py::return_value_policy::reference);
   }
 
-  void set(System& system, double p) const {
+  void set(Sys& system, double p) const {
     py::gil_scoped_acquire gil;
     const py::object r = (*parameter)(as_python(system), p);
-    if (!py::isinstance<PySystem>(r))
-      throw py::type_error("continue_orbits: parameter(system, p) must return the FrictionDampedSystem at p, got " +
+    if (!py::isinstance<Py>(r))
+      throw py::type_error("continue_orbits: parameter(system, p) must return the " +
+                           std::string(py::str(py::type::of<Py>().attr("__name__"))) + " at p, got " +
                            std::string(py::str(py::type::of(r).attr("__name__"))));
-    const PySystem& next = r.cast<const PySystem&>();
+    const Py& next = r.cast<const Py&>();
     if (&next == &system) return;
-    System copy = copy_of(next);  // under next's lock: another thread may be running it
-    if (copy.state_size() != system.state_size() || copy.num_dampers() != system.num_dampers())
+    Sys copy = copy_of(next);  // under next's lock: another thread may be running it
+    if (copy.state_size() != system.state_size() || num_contacts_of(copy) != num_contacts_of(system))
       throw std::invalid_argument("continue_orbits: parameter(system, p) returned a system of another state size (" +
                                   std::to_string(copy.state_size()) + " instead of " +
                                   std::to_string(system.state_size()) + ")");
@@ -1506,7 +1714,7 @@ struct ContinuationCallbacks {
     py::gil_scoped_acquire gil;
     return cast_as<double>((*period)(p), "continue_orbits: period(p) must return a float");
   }
-  Mode mode_of(System& system, double t, const State& x, const Mode& previous) const {
+  Mode mode_of(Sys& system, double t, const State& x, const Mode& previous) const {
     py::gil_scoped_acquire gil;
     const py::object r = (*start_mode)(as_python(system), t, x, to_list(previous));
     const std::string what = "continue_orbits: start_mode(system, t, x, mode)";
@@ -1514,16 +1722,16 @@ struct ContinuationCallbacks {
     system.validate_state(mode, x, what.c_str());
     return mode;
   }
-  void point(const ContinuationPoint<System>& pt) const {
+  void point(const ContinuationPoint<Sys>& pt) const {
     py::gil_scoped_acquire gil;
     (*on_point)(to_py(pt));
   }
-  SplitContinuation<System>::Guess guess(System& system, double p) const {
+  typename SplitContinuation<Sys>::Guess guess(Sys& system, double p) const {
     py::gil_scoped_acquire gil;
     const py::object r = (*start)(as_python(system), p);
     const std::string where = "continue_orbits: start(system, p)", what = where + " must return (mode, t0, x0)";
     const auto t = cast_as<std::tuple<py::object, py::object, py::object>>(r, what);
-    SplitContinuation<System>::Guess g{
+    typename SplitContinuation<Sys>::Guess g{
         to_mode(cast_as<std::vector<ContactState>>(std::get<0>(t), what + " with mode a list of ContactState")),
         cast_as<double>(std::get<1>(t), what + " with t0 a float"),
         cast_as<State>(std::get<2>(t), what + " with x0 a 1-D array of floats")};
@@ -1532,10 +1740,10 @@ struct ContinuationCallbacks {
   }
 };
 
-/// find_periodic_orbit for one system type (Py: PySystem or PyContactSystem).
+/// find_periodic_orbit for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
 template <class Py>
 void def_find_periodic_orbit(py::module_& m, const char* doc) {
-  using Sys = std::conditional_t<std::is_same_v<Py, PyContactSystem>, CSystem, System>;
+  using Sys = typename Py::Wrapped;
   m.def(
       "find_periodic_orbit",
       [](Py& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
@@ -1556,6 +1764,130 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
       py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
       py::arg("max_steps") = StepperOptions<double>{}.max_steps, doc);
+}
+
+/// continue_orbits for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
+template <class Py>
+void def_continue_orbits(py::module_& m, const char* doc) {
+  using Sys = typename Py::Wrapped;
+  m.def(
+      "continue_orbits",
+      [](Py& system, const py::object& parameter, double p0, double p_end, const py::object& period, double t0,
+         std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
+         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
+         double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
+         int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
+         int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
+         const py::object& start, long max_steps) {
+        static const std::string where = "continue_orbits";
+        if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
+        if (parts > max_split_parts())
+          detail::throw_invalid(where,
+                                "parts must be <= " + std::to_string(max_split_parts()) +
+                                    " (4 x the hardware threads: each part is a thread and a copy of the system, "
+                                    "and the speed-up is at most the number of cores)",
+                                parts);
+        if (!start.is_none() && !PyCallable_Check(start.ptr()))
+          throw std::invalid_argument(where + ": start must be None or a callable start(system, p)");
+        if (!PyCallable_Check(parameter.ptr()))
+          throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
+        if (!PyCallable_Check(period.ptr())) {
+          const double T = cast_as<double>(period, where + ": period must be a float or a callable period(p)");
+          detail::require_positive(where, "period", T);
+        }
+        if (!start_mode.is_none() && !PyCallable_Check(start_mode.ptr()))
+          throw std::invalid_argument(where + ": start_mode must be None or a callable start_mode(system, t, x, mode)");
+        if (!on_point.is_none() && !PyCallable_Check(on_point.ptr()))
+          throw std::invalid_argument(where + ": on_point must be None or a callable on_point(point)");
+        detail::require_finite(where, "p0", p0);
+        detail::require_finite(where, "p_end", p_end);
+        if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
+        ContinuationOptions<double> co;
+        co.parameter_min = std::min(p0, p_end);
+        co.parameter_max = std::max(p0, p_end);
+        co.direction = p_end > p0 ? 1 : -1;
+        co.initial_step = initial_step;
+        co.min_step = min_step;
+        co.max_step = max_step;
+        co.max_points = max_points;
+        co.max_corrector_iterations = max_corrector_iterations;
+        co.fast_iterations = fast_iterations;
+        co.growth = growth;
+        co.section_margin = section_margin;
+        co.chord_iterations = chord_iterations;
+        const ContinuationCallbacks<Py> cb{&parameter, &period, &start_mode, &on_point, &start};
+        ShootingOptions<double> opt;
+        State x;
+        Mode md;
+        // parts > 1: the parts run on copies (made under the system's lock, destroyed with the GIL
+        // held: a load's Python time_function is copied with them), not on `system`, which is
+        // locked again at the end to take part 0's copy (the system at part 0's last point).
+        std::vector<Py> copies;
+        PyContinuation out = with_system(system, [&](SignalCheck& signals) {
+          opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps, where);
+          x = x0 ? *x0 : system.initial_state();
+          md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, where);
+          PyContinuation one;
+          if (parts > 1) {
+            copies.assign(static_cast<std::size_t>(parts), system);
+            return one;
+          }
+          opt.interrupt = [&signals] { return signals(); };
+          Continuation<Sys> cont(
+              system, [&cb](Sys& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
+              co);
+          if (!start_mode.is_none())
+            cont.start_mode(
+                [&cb](Sys& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
+          if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<Sys>& pt) { cb.point(pt); });
+          const auto result = cont.run(md, t0, x, p0);
+          one.status = result.status;
+          one.message = result.message;
+          one.points = to_py(result.points);
+          return one;
+        });
+        if (parts == 1) return out;
+        SignalCheck signals;
+        {
+          py::gil_scoped_release release;
+          opt.interrupt = [&signals] { return signals(); };
+          std::vector<Sys*> systems;
+          for (Py& c : copies) systems.push_back(&c);
+          SplitContinuation<Sys> split(
+              systems, [&cb](Sys& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); },
+              opt, co);
+          if (!start_mode.is_none())
+            split.start_mode(
+                [&cb](Sys& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
+          if (!on_point.is_none())
+            split.on_point([&cb](std::size_t, const ContinuationPoint<Sys>& pt) { cb.point(pt); });
+          const auto result = split.run([&](Sys& s, double p) {
+            if (start.is_none()) return typename SplitContinuation<Sys>::Guess{md, t0, x};
+            return cb.guess(s, p);
+          });
+          out.status = result.branch.status;
+          out.message = result.branch.message;
+          out.points = to_py(result.branch.points);
+          for (std::size_t k = 0; k < result.parts.size(); ++k) {
+            const auto& r = result.parts[k];
+            out.parts.push_back(PyContinuationPart{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined,
+                                                   r.cpu_seconds, to_py(result.dropped[k].points)});
+          }
+        }
+        signals.rethrow();
+        with_system(system, [&](SignalCheck&) { static_cast<Sys&>(system) = copies.front(); });
+        return out;
+      },
+      py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,
+      py::arg("x0") = py::none(), py::arg("mode") = py::none(), py::arg("periodic") = py::none(),
+      py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
+      py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12, py::arg("initial_step") = 0.01, py::arg("min_step") = 1e-6,
+      py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
+      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
+      py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
+      py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
+      doc);
 }
 
 void bind_steady_state(py::module_& m) {
@@ -1604,6 +1936,10 @@ void bind_steady_state(py::module_& m) {
       m,
       "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
       "2n), not the audit integrals. stick_fractions and switches are per contact.");
+  def_find_periodic_orbit<PyBodyContactSystem>(
+      m,
+      "A BodyContactSystem's forced periodic orbit, as above; the default periodic components are z, z' (q and "
+      "the bodies' coordinates, the first 2 num_coordinates()), not the audit integrals.");
 
   py::enum_<ContinuationStatus>(m, "ContinuationStatus", "How continue_orbits ended (Branch.status).")
       .value("Completed", ContinuationStatus::Completed, "the branch left the parameter range")
@@ -1646,123 +1982,8 @@ void bind_steady_state(py::module_& m) {
             return Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(p.data(), static_cast<Index>(p.size())));
           },
           "the points' parameters (numpy)");
-  m.def(
-      "continue_orbits",
-      [](PySystem& system, const py::object& parameter, double p0, double p_end, const py::object& period, double t0,
-         std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
-         std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
-         double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
-         int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
-         int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
-         const py::object& start, long max_steps) {
-        static const std::string where = "continue_orbits";
-        if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
-        if (parts > max_split_parts())
-          detail::throw_invalid(where,
-                                "parts must be <= " + std::to_string(max_split_parts()) +
-                                    " (4 x the hardware threads: each part is a thread and a copy of the system, "
-                                    "and the speed-up is at most the number of cores)",
-                                parts);
-        if (!start.is_none() && !PyCallable_Check(start.ptr()))
-          throw std::invalid_argument(where + ": start must be None or a callable start(system, p)");
-        if (!PyCallable_Check(parameter.ptr()))
-          throw std::invalid_argument(where + ": parameter must be a callable parameter(system, p)");
-        if (!PyCallable_Check(period.ptr())) {
-          const double T = cast_as<double>(period, where + ": period must be a float or a callable period(p)");
-          detail::require_positive(where, "period", T);
-        }
-        if (!start_mode.is_none() && !PyCallable_Check(start_mode.ptr()))
-          throw std::invalid_argument(where + ": start_mode must be None or a callable start_mode(system, t, x, mode)");
-        if (!on_point.is_none() && !PyCallable_Check(on_point.ptr()))
-          throw std::invalid_argument(where + ": on_point must be None or a callable on_point(point)");
-        detail::require_finite(where, "p0", p0);
-        detail::require_finite(where, "p_end", p_end);
-        if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
-        ContinuationOptions<double> co;
-        co.parameter_min = std::min(p0, p_end);
-        co.parameter_max = std::max(p0, p_end);
-        co.direction = p_end > p0 ? 1 : -1;
-        co.initial_step = initial_step;
-        co.min_step = min_step;
-        co.max_step = max_step;
-        co.max_points = max_points;
-        co.max_corrector_iterations = max_corrector_iterations;
-        co.fast_iterations = fast_iterations;
-        co.growth = growth;
-        co.section_margin = section_margin;
-        co.chord_iterations = chord_iterations;
-        const ContinuationCallbacks cb{&parameter, &period, &start_mode, &on_point, &start};
-        ShootingOptions<double> opt;
-        State x;
-        Mode md;
-        // parts > 1: the parts run on copies (made under the system's lock, destroyed with the GIL
-        // held: a load's Python time_function is copied with them), not on `system`, which is
-        // locked again at the end to take part 0's copy (the system at part 0's last point).
-        std::vector<PySystem> copies;
-        PyContinuation out = with_system(system, [&](SignalCheck& signals) {
-          opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps, where);
-          x = x0 ? *x0 : system.initial_state();
-          md = mode ? to_mode(*mode) : system.requested_mode();
-          check_start(system, md, x, where);
-          PyContinuation one;
-          if (parts > 1) {
-            copies.assign(static_cast<std::size_t>(parts), system);
-            return one;
-          }
-          opt.interrupt = [&signals] { return signals(); };
-          Continuation<System> cont(
-              system, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); }, opt,
-              co);
-          if (!start_mode.is_none())
-            cont.start_mode(
-                [&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
-          if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<System>& pt) { cb.point(pt); });
-          const auto result = cont.run(md, t0, x, p0);
-          one.status = result.status;
-          one.message = result.message;
-          one.points = to_py(result.points);
-          return one;
-        });
-        if (parts == 1) return out;
-        SignalCheck signals;
-        {
-          py::gil_scoped_release release;
-          opt.interrupt = [&signals] { return signals(); };
-          std::vector<System*> systems;
-          for (PySystem& c : copies) systems.push_back(&c);
-          SplitContinuation<System> split(
-              systems, [&cb](System& s, double p) { cb.set(s, p); }, [&cb](double p) { return cb.period_of(p); },
-              opt, co);
-          if (!start_mode.is_none())
-            split.start_mode(
-                [&cb](System& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
-          if (!on_point.is_none())
-            split.on_point([&cb](std::size_t, const ContinuationPoint<System>& pt) { cb.point(pt); });
-          const auto result = split.run([&](System& s, double p) {
-            if (start.is_none()) return SplitContinuation<System>::Guess{md, t0, x};
-            return cb.guess(s, p);
-          });
-          out.status = result.branch.status;
-          out.message = result.branch.message;
-          out.points = to_py(result.branch.points);
-          for (std::size_t k = 0; k < result.parts.size(); ++k) {
-            const auto& r = result.parts[k];
-            out.parts.push_back(PyContinuationPart{r.start_parameter, r.status, r.message, r.points, r.kept, r.joined,
-                                                   r.cpu_seconds, to_py(result.dropped[k].points)});
-          }
-        }
-        signals.rethrow();
-        with_system(system, [&](SignalCheck&) { static_cast<System&>(system) = copies.front(); });
-        return out;
-      },
-      py::arg("system"), py::arg("parameter"), py::arg("p0"), py::arg("p_end"), py::arg("period"), py::arg("t0") = 0.0,
-      py::arg("x0") = py::none(), py::arg("mode") = py::none(), py::arg("periodic") = py::none(),
-      py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
-      py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12, py::arg("initial_step") = 0.01, py::arg("min_step") = 1e-6,
-      py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
-      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
-      py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
-      py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
+  def_continue_orbits<PySystem>(
+      m,
       "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
@@ -1777,6 +1998,15 @@ void bind_steady_state(py::module_& m) {
       "4 x the hardware threads. max_steps: step attempts allowed per orbit run. A Python exception raised by a "
       "callable ends the run and propagates. The GIL is released during the run and re-acquired for each "
       "callable; Ctrl-C stops the call (KeyboardInterrupt).");
+  def_continue_orbits<PyContactSystem>(
+      m,
+      "A ContactSystem's branch, as above: parameter(system, p) returns the ContactSystem at p (the same number of "
+      "contacts and state size); periodic defaults to q, q' (the first 2n components). Branch points' "
+      "stick_fractions and switches are per contact.");
+  def_continue_orbits<PyBodyContactSystem>(
+      m,
+      "A BodyContactSystem's branch, as above: parameter(system, p) returns the BodyContactSystem at p; periodic "
+      "defaults to z, z' (the first 2 num_coordinates() components).");
 
   py::enum_<PoincareStatus>(m, "PoincareStatus", "What poincare_sections found (PoincareSections.status).")
       .value("Periodic", PoincareStatus::Periodic, "the sections repeat with period k = period")
@@ -1862,6 +2092,7 @@ PYBIND11_MODULE(stickslip, m) {
   bind_dampers(m);
   bind_system(m);
   bind_contacts(m);
+  bind_bodies(m);
   bind_simulate(m);
   bind_trade_study(m);
   bind_steady_state(m);

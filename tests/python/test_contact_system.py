@@ -74,13 +74,13 @@ class DenHartogOrbit:
         return bool(np.all(self.v_half(tau) > 0)) and self.X > 0 and abs(f_required) > self.mu_s_N
 
 
-def den_hartog_scene():
+def den_hartog_scene(F0=20.0):
     """One retained mode of the cantilever with a grounded Coulomb slider at the tip and the tip
-    force F0 cos(w t): with x = phi q the tip is the oscillator m = 1/phi^2, k = omega^2/phi^2."""
+    force F0 cos(w t) [N]: with x = phi q the tip is the oscillator m = 1/phi^2, k = omega^2/phi^2."""
     frame, member = cantilever()
     basis = ss.compute_modes(frame, num_modes=1)
     wn = float(basis.omega()[0])
-    w, F0, mu, N = 0.6 * wn, 20.0, 0.3, 15.0
+    w, mu, N = 0.6 * wn, 0.3, 15.0
     slider = ss.PointContact.grounded(ss.StructurePoint(member, LENGTH), ss.PlaneDirection.global_x(),
                                       ss.CoulombLaw(mu, mu), N)
     # F0 cos(w t) = F0 sin(w t + pi/2), applied at the tip along X (the load's own row).
@@ -200,3 +200,26 @@ def test_find_periodic_orbit_converges_on_den_hartogs_orbit():
     assert abs(phi * found.x0[0] - xe) <= 1e-6 * orbit.X
     assert abs(phi * found.x0[1] - ve) <= 1e-6 * orbit.X * orbit.wn
     assert found.switches == [2] and found.stick_fractions == [0.0]
+
+
+def test_continue_orbits_follows_den_hartogs_orbits_in_the_load_amplitude():
+    system, phi, orbit = den_hartog_scene()
+    t0 = orbit.t1 + 0.2 * orbit.T  # inside the upward slide at every amplitude of the branch
+    xe, ve = orbit.state(t0)
+    x = system.initial_state()
+    x[0], x[1] = xe / phi, ve / phi
+    # p = F0 / 20 N, from 1 to 1.2; the period stays 2 pi / w.
+    branch = ss.continue_orbits(system, lambda s, p: den_hartog_scene(20.0 * p)[0], 1.0, 1.2, orbit.T, t0=t0,
+                                x0=x, mode=[ss.ContactState.SlipPositive], initial_step=0.05, max_step=0.1)
+    assert branch.status == ss.ContinuationStatus.Completed, branch.message
+    assert len(branch.points) >= 3 and np.all(np.diff(branch.parameters) > 0)  # the range left after p ~ 1.11
+    for pt in branch.points:
+        ref = den_hartog_scene(20.0 * pt.parameter)[2]
+        xe, ve = ref.state(t0)
+        # As find_periodic_orbit's fixed point above (shooting to 1e-9 at rtol 1e-10): 1e-6 X
+        # fails for an orbit at the wrong amplitude (dX/dF0 ~ X / F0: 1e-6 X is 2e-5 N).
+        assert abs(phi * pt.orbit.x0[0] - xe) <= 1e-6 * ref.X
+        assert abs(phi * pt.orbit.x0[1] - ve) <= 1e-6 * ref.X * ref.wn
+    with pytest.raises(TypeError, match="parameter\\(system, p\\) must return the ContactSystem at p, got float"):
+        ss.continue_orbits(system, lambda s, p: 1.0, 1.0, 1.2, orbit.T, t0=t0, x0=x,
+                           mode=[ss.ContactState.SlipPositive])
