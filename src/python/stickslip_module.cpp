@@ -669,6 +669,9 @@ void bind_system(py::module_& m) {
                     "W_slope, work of the normal forces as the contacts slide over a sloped member [J]")
       .def_readonly("impact_loss", &Balance::impact_loss, "D_imp, kinetic energy lost in impacts [J]")
       .def_readonly("residual", &Balance::residual, "(E - E0) - (W_ext - D_visc - D_fric + W_slope - D_imp) [J]")
+      .def_readonly("applies", &Balance::applies,
+                    "False when a moving contact may go on past a member end under EndPolicy.Clamp, where the audit "
+                    "cannot close (docs/howto/forces_events_energy.md)")
       .def("relative_residual", &Balance::relative_residual,
            "|residual| / the largest term of the audit (|residual| when every term is 0), for a run from rest.");
   py::enum_<System::StopReason>(m, "StopReason", "Why a FrictionDampedSystem stopped a run (stop_reason()).")

@@ -138,6 +138,30 @@ TEST(Stops, ExtrapolatePolicyContinuesPastTheMemberEnd) {
   EXPECT_GT(outside, 0.0) << "the contact must have passed an end and the run continued";
 }
 
+// The energy audit says where it cannot close: a moving contact that may go on past a member end
+// (MemberEnd::Extend, here by Default) under EndPolicy::Clamp keeps the end's slope and curvature
+// there, which do work its potential does not see (docs/howto/forces_events_energy.md). Under
+// Throw (the ends stop the run), Extrapolate (one smooth interpolant) or with both ends explicit
+// walls, it applies.
+TEST(Stops, EnergyAuditSaysItDoesNotApplyPastAClampedEnd) {
+  const TScene s = make_t_frame();
+  auto applies = [&](EndPolicy policy, MemberEnd end) {
+    ModelOptions<double> opt;
+    opt.end_policy = policy;
+    auto dampers = near_ends(s);
+    for (auto& d : dampers) d.start_end = d.finish_end = end;
+    System sys(s.frame, s.basis, dampers, paper_load(s, 100.0), opt);
+    const System::State x0 = sys.initial_state();
+    const DamperStates mode = sys.requested_mode();
+    return sys.energy_balance(mode, 0.0, x0, 0.0).applies;
+  };
+  EXPECT_FALSE(applies(EndPolicy::Clamp, MemberEnd::Default));
+  EXPECT_FALSE(applies(EndPolicy::Clamp, MemberEnd::Extend));
+  EXPECT_TRUE(applies(EndPolicy::Clamp, MemberEnd::Wall));
+  EXPECT_TRUE(applies(EndPolicy::Extrapolate, MemberEnd::Default));
+  EXPECT_TRUE(applies(EndPolicy::Throw, MemberEnd::Default));
+}
+
 // ---- 7. caller errors ----------------------------------------------------------------------------
 
 void expect_invalid(const std::function<void()>& build, const std::string& parameter) {

@@ -222,6 +222,13 @@ class FrictionDampedSystem {
     /// D_imp: kinetic energy lost in the impacts of separated dampers (0 without Separate dampers).
     Scalar impact_loss = Scalar(0);
     Scalar residual;     ///< (E(t) - E0) - (W_ext - D_visc - D_fric + W_slope - D_imp)
+    /// False when the audit cannot close for this scene: a moving contact may go on past a member
+    /// end (an end of kind MemberEnd::Extend) under EndPolicy::Clamp, where the shapes keep the
+    /// end's value but also its slope and curvature, so the slope and convective terms do work
+    /// the potential does not see (docs/howto/forces_events_energy.md). The residual then
+    /// measures the integration only for runs whose contacts stayed on their members; with
+    /// EndPolicy::Extrapolate the audit applies past the ends too.
+    bool applies = true;
     /// |residual| / max(|E|, |W_ext|, D_visc, D_fric, |W_slope|, D_imp): the closing error relative
     /// to the audit's largest term (|residual| when every term is 0). Meant for a run that starts
     /// from rest (E0 = 0); with E0 != 0 compare against |E0| too.

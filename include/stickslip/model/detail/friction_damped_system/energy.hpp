@@ -71,6 +71,10 @@ inline auto FrictionDampedSystem<Scalar_, Law_, Modes>::energy_balance(
   if (audit_size() > 4) b.impact_loss = x[o + 4];
   b.residual = (b.mechanical - E0) - (b.external_work - b.viscous_dissipation - b.friction_dissipation +
                                       b.slope_work - b.impact_loss);
+  if (options_.end_policy == EndPolicy::Clamp)
+    for (std::size_t i = 0; i < dampers_.size(); ++i)
+      if (moving_[i] && (end_kind_[i][0] == MemberEnd::Extend || end_kind_[i][1] == MemberEnd::Extend))
+        b.applies = false;
   return b;
 }
 
