@@ -80,8 +80,8 @@ inline auto FrictionDampedSystem<Scalar_, Law_, Modes>::energy_balance(
 
 /// The energy audit's rates (rhs) as quadratic forms z^T Q_j z of an exact mode
 /// (LinearPart::quadrature_forms): W_ext' = sum_l F_l(t) psi_l . q' with F_l in the clock
-/// components of z, D_visc' = q'^T diag(c) q', D_fric' = -f . V with f = lp_fz_ z and
-/// V = lp_vz_ z, W_slope' = 0 (a stuck damper has V = 0, an exact slipping one a fixed contact).
+/// components of z, D_visc' = q'^T diag(c) q', D_fric' = -f . V with f = lp_.fz z and
+/// V = lp_.vz z, W_slope' = 0 (a stuck damper has V = 0, an exact slipping one a fixed contact).
 template <class Scalar_, class Law_, int Modes>
 inline void FrictionDampedSystem<Scalar_, Law_, Modes>::audit_forms(Index P, Index K, LinearPart<Scalar>& lp) const {
   using std::abs;
@@ -105,7 +105,7 @@ inline void FrictionDampedSystem<Scalar_, Law_, Modes>::audit_forms(Index P, Ind
     lp.quadrature_forms[0].block(P + 2 + 2 * k, n_, 1, n_) += s * psi;
   }
   lp.quadrature_forms[1].diagonal().segment(n_, n_) = modal_damping_.head(n_);
-  lp.quadrature_forms[2].noalias() = -lp_fz_.transpose() * lp_vz_;
+  lp.quadrature_forms[2].noalias() = -lp_.fz.transpose() * lp_.vz;
 }
 
 }  // namespace stickslip

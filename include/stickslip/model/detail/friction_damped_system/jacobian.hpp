@@ -27,31 +27,31 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian(const Mode& mode, Scal
     for (Index j = 0; j < N; ++j) jacobian_column(mode, t, x, j, J);
     return;
   }
-  if (!linear_part(mode, t, x, jac_lp_)) {
+  if (!linear_part(mode, t, x, jac_.lp)) {
     J.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return;
   }
-  STICKSLIP_ASSERT(jac_lp_.exact && "FrictionDampedSystem::jacobian: exact_mode disagrees with linear_part");
+  STICKSLIP_ASSERT(jac_.lp.exact && "FrictionDampedSystem::jacobian: exact_mode disagrees with linear_part");
   const Index P = linear_size();
   J.setZero();
-  J.topLeftCorner(P, P) = jac_lp_.A;
-  if (jac_lp_.has_quadrature_forms()) {  // d(z^T Q z)/dz = (Q + Q^T) z, its first P entries
-    const Index K = static_cast<Index>(jac_lp_.omega.size());
-    jac_z_.resize(P + 1 + 2 * K);
-    jac_z_.head(P) = x.head(P);
-    jac_z_[P] = Scalar(1);
+  J.topLeftCorner(P, P) = jac_.lp.A;
+  if (jac_.lp.has_quadrature_forms()) {  // d(z^T Q z)/dz = (Q + Q^T) z, its first P entries
+    const Index K = static_cast<Index>(jac_.lp.omega.size());
+    jac_.z.resize(P + 1 + 2 * K);
+    jac_.z.head(P) = x.head(P);
+    jac_.z[P] = Scalar(1);
     using std::cos;
     using std::sin;
     for (Index k = 0; k < K; ++k) {
-      const Scalar w = jac_lp_.omega[static_cast<std::size_t>(k)];
-      jac_z_[P + 1 + 2 * k] = cos(w * t);
-      jac_z_[P + 2 + 2 * k] = sin(w * t);
+      const Scalar w = jac_.lp.omega[static_cast<std::size_t>(k)];
+      jac_.z[P + 1 + 2 * k] = cos(w * t);
+      jac_.z[P + 2 + 2 * k] = sin(w * t);
     }
-    for (std::size_t q = 0; q < jac_lp_.quadrature_forms.size(); ++q) {
-      const Matrix& Q = jac_lp_.quadrature_forms[q];
+    for (std::size_t q = 0; q < jac_.lp.quadrature_forms.size(); ++q) {
+      const Matrix& Q = jac_.lp.quadrature_forms[q];
       auto row = J.row(P + static_cast<Index>(q)).head(P).transpose();
-      row.noalias() = Q.topRows(P) * jac_z_;
-      row.noalias() += Q.leftCols(P).transpose() * jac_z_;
+      row.noalias() = Q.topRows(P) * jac_.z;
+      row.noalias() += Q.leftCols(P).transpose() * jac_.z;
     }
   }
   if (options_.moving_contact && !contact_columns(mode, t, x, J, false))
@@ -64,12 +64,12 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian_column(const Mode& mod
                                                                 Matrix& J) {
   using std::abs;
   const Scalar h = Scalar(1e-6) * std::max(Scalar(1), abs(x[j]));
-  jac_x_ = x;
-  jac_x_[j] = x[j] + h;
-  rhs(mode, t, jac_x_, jac_fp_);
-  jac_x_[j] = x[j] - h;
-  rhs(mode, t, jac_x_, jac_fm_);
-  J.col(j) = (jac_fp_ - jac_fm_) / (Scalar(2) * h);
+  jac_.x = x;
+  jac_.x[j] = x[j] + h;
+  rhs(mode, t, jac_.x, jac_.fp);
+  jac_.x[j] = x[j] - h;
+  rhs(mode, t, jac_.x, jac_.fm);
+  J.col(j) = (jac_.fp - jac_.fm) / (Scalar(2) * h);
 }
 
 /// The tangent's (and contact_columns') condition: no damper in flight or resting at a wall,
@@ -102,11 +102,11 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     J.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
     return true;
   }
-  if (jac_rho_.rows() != D2 || jac_rho_.cols() != N) {
-    jac_rho_.setZero(D2, N);
-    jac_du_.setZero(D2, N);
-    for (auto* g : {&jac_gV_, &jac_gs_, &jac_gh_, &jac_gd_, &jac_gc_}) g->setZero(N);
-    jac_shape_.resize(n);
+  if (jac_.rho.rows() != D2 || jac_.rho.cols() != N) {
+    jac_.rho.setZero(D2, N);
+    jac_.du.setZero(D2, N);
+    for (auto* g : {&jac_.gV, &jac_.gs, &jac_.gh, &jac_.gd, &jac_.gc}) g->setZero(N);
+    jac_.shape.resize(n);
   }
   J.setZero();
   const Index qd0 = n;  // first q' column
@@ -119,7 +119,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
   //   (1 - sc mu) N + m (a - sc b)^T q'' = N0 - m h + sc k x_d + m sc dd
   // carries the slope sc = q^T psi_w'(X) (with the convective terms), h = 2 (psi_w'^T q') V +
   // (psi_w''^T q) V^2 and dd = (psi_u'^T q') V, V = x_d' - b^T q'.
-  auto rho = jac_rho_.topRows(U);
+  auto rho = jac_.rho.topRows(U);
   rho.setZero();
   const bool convective = options_.convective_terms;
   for (Index j = 0; j < U; ++j) {
@@ -140,25 +140,25 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     const Scalar dw_qd = sd * v.dpsi_w.dot(qd), ddw_q = sd * v.ddpsi_w.dot(q), du_qd = v.dpsi_u.dot(qd);
     const Scalar dd = du_qd * V;
     // gradients (rows over the state) of V, sc, h and dd
-    jac_gV_.setZero();
-    jac_gV_[xd_offset() + i] = Scalar(1);
-    jac_gV_.segment(qd0, n) = -v.psi_u.transpose();
-    jac_gs_.setZero();
-    jac_gs_.head(n) = sd * v.dpsi_w.transpose();
-    jac_gh_ = (Scalar(2) * dw_qd + Scalar(2) * ddw_q * V) * jac_gV_;
-    jac_gh_.head(n) += (V * V * sd) * v.ddpsi_w.transpose();
-    jac_gh_.segment(qd0, n) += (Scalar(2) * V * sd) * v.dpsi_w.transpose();
-    jac_gd_ = du_qd * jac_gV_;
-    jac_gd_.segment(qd0, n) += V * v.dpsi_u.transpose();
+    jac_.gV.setZero();
+    jac_.gV[xd_offset() + i] = Scalar(1);
+    jac_.gV.segment(qd0, n) = -v.psi_u.transpose();
+    jac_.gs.setZero();
+    jac_.gs.head(n) = sd * v.dpsi_w.transpose();
+    jac_.gh = (Scalar(2) * dw_qd + Scalar(2) * ddw_q * V) * jac_.gV;
+    jac_.gh.head(n) += (V * V * sd) * v.ddpsi_w.transpose();
+    jac_.gh.segment(qd0, n) += (Scalar(2) * V * sd) * v.dpsi_w.transpose();
+    jac_.gd = du_qd * jac_.gV;
+    jac_.gd.segment(qd0, n) += V * v.dpsi_u.transpose();
     // rho_j = (dc - dA N - dL^T q'') / s_j with dc = -m dh + (k x_d + m dd) dsc + sc k dx_d +
     // m sc ddd, dA = -mu dsc, dL = -m b dsc
-    jac_gc_ = -m * jac_gh_ + (k * xi + m * dd + mu * e.N[i] + m * v.psi_u.dot(e.qdd)) * jac_gs_ +
-              (m * sc) * jac_gd_;
-    jac_gc_[x_offset() + i] += sc * k;
+    jac_.gc = -m * jac_.gh + (k * xi + m * dd + mu * e.N[i] + m * v.psi_u.dot(e.qdd)) * jac_.gs +
+              (m * sc) * jac_.gd;
+    jac_.gc[x_offset() + i] += sc * k;
     using std::abs;
     const Scalar diag = Scalar(1) - sc * mu;
     const Scalar s_j = diag != Scalar(1) && abs(diag) >= Scalar(0.5) ? diag : Scalar(1);
-    rho.row(j) = jac_gc_ / s_j;
+    rho.row(j) = jac_.gc / s_j;
   }
   // dq'' = dr0 + F du (n x N), J's q'' rows; dr0 = -omega^2 dq - c dq'.
   auto qdd_rows = J.middleRows(n, n);
@@ -168,7 +168,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     rho.leftCols(n).noalias() += L.transpose() * omega2_.asDiagonal();
     rho.middleCols(qd0, n).noalias() += L.transpose() * modal_damping_.asDiagonal();
     Eigen::PartialPivLU<Matrix>& lu = tangent_lu(U);
-    auto du = jac_du_.topRows(U);
+    auto du = jac_.du.topRows(U);
     du.noalias() = lu.solve(rho);
     qdd_rows.noalias() = F * du;
   }
@@ -197,26 +197,26 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_jacobian(const Mode& mo
     const Index unknown = unknown_row(i);
     // x_d'' = (f - k x_d) / m, f = -mu N
     const Scalar mu = mu_[i];
-    if (unknown >= 0) J.row(xd_offset() + i) = (-mu / m) * jac_du_.row(unknown);
+    if (unknown >= 0) J.row(xd_offset() + i) = (-mu / m) * jac_.du.row(unknown);
     J(xd_offset() + i, x_offset() + i) -= k / m;
     // V = x_d' - b^T q' (b at X)
-    jac_gV_.setZero();
-    jac_gV_[xd_offset() + i] = Scalar(1);
+    jac_.gV.setZero();
+    jac_.gV[xd_offset() + i] = Scalar(1);
     if (moving_[iu]) {
-      jac_gV_.segment(qd0, n) = -modal(slip_b_.col(i)).transpose();
-      J.row(contact_offset() + i) = jac_gV_;
+      jac_.gV.segment(qd0, n) = -modal(slip_b_.col(i)).transpose();
+      J.row(contact_offset() + i) = jac_.gV;
     } else {
-      jac_gV_.segment(qd0, n) = -C_.col(D_ + i).head(n).transpose();
+      jac_.gV.segment(qd0, n) = -C_.col(D_ + i).head(n).transpose();
     }
     if (!audit) continue;
     const Scalar V = e.V[i], Ni = e.N[i], fi = e.f[i];
     // D_fric' = -sum f V: -(V df + f dV), df = -mu dN
-    if (unknown >= 0) J.row(o + 2) += (V * mu) * jac_du_.row(unknown);
-    J.row(o + 2) -= fi * jac_gV_;
+    if (unknown >= 0) J.row(o + 2) += (V * mu) * jac_.du.row(unknown);
+    J.row(o + 2) -= fi * jac_.gV;
     if (options_.moving_contact && moving_[iu]) {  // W_slope' = -sum N slope V
       const Scalar sl = e.slope[i];
-      if (unknown >= 0) J.row(o + 3) -= (sl * V) * jac_du_.row(unknown);
-      J.row(o + 3) -= (Ni * sl) * jac_gV_;
+      if (unknown >= 0) J.row(o + 3) -= (sl * V) * jac_.du.row(unknown);
+      J.row(o + 3) -= (Ni * sl) * jac_.gV;
       J.row(o + 3).head(n) -= (Ni * V * dmp.side) * jacobian_shapes(i, e.X[i]).dpsi_w.transpose();
     }
   }
@@ -240,12 +240,12 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
     return true;
   }
   Eigen::PartialPivLU<Matrix>* lu = nullptr;
-  if (U > 0) lu = lu_ready ? &jac_lu_[static_cast<std::size_t>(U)] : &tangent_lu(U);
-  jac_d3w_.resize(n);
-  jac_g_.resize(n);
-  jac_dqdd_.resize(n);
-  jac_dux_.resize(std::max<Index>(U, 1));
-  jac_sol_.resize(std::max<Index>(U, 1));
+  if (U > 0) lu = lu_ready ? &jac_.lu[static_cast<std::size_t>(U)] : &tangent_lu(U);
+  jac_.d3w.resize(n);
+  jac_.g.resize(n);
+  jac_.dqdd.resize(n);
+  jac_.dux.resize(std::max<Index>(U, 1));
+  jac_.sol.resize(std::max<Index>(U, 1));
   const auto q = x.segment(0, n), qd = x.segment(n, n), qdd = e.qdd.head(n);
   const bool audit = options_.energy_audit, convective = options_.convective_terms;
   const Index o = audit ? energy_offset() : -1;
@@ -265,7 +265,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
     {
       const auto B = element_block(iu, loc.element);
       const Scalar inv = loc.weights.du, w3 = Scalar(12) * inv * inv * inv, t3 = Scalar(6) * inv * inv;
-      jac_d3w_.noalias() = w3 * (B.col(1) - B.col(4)) + t3 * (B.col(2) + B.col(5));
+      jac_.d3w.noalias() = w3 * (B.col(1) - B.col(4)) + t3 * (B.col(2) + B.col(5));
     }
     const auto& v = jacobian_shapes(i, e.X[i]);
     const Scalar sd = dmp.side, m = dmp.effective_mass(), k = dmp.effective_stiffness();
@@ -274,32 +274,32 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
     const Index jN = unknown_row(i), jf = unknown_row(D_ + i);  // N_i's and (stuck) f_i's rows
     // d/dX of the solve: (A + L^T F) du = rho - L^T g, dq'' = g + F du, with
     // rho_j = (dc_j - dA_j u_j - dL_j^T q'') / s_j in damper i's rows and g = dr0 + dF u.
-    jac_g_.setZero();
-    jac_dux_.setZero();
+    jac_.g.setZero();
+    jac_.dux.setZero();
     const Scalar slope = sd * v.dpsi_w.dot(q), dslope = sd * v.ddpsi_w.dot(q);
     Scalar dV = 0;  // dV/dX of a slipping damper (V = x_d' - b^T q')
     if (stuck) {
       if (jN >= 0) {  // N + m a^T q'' = N0: F_j = a, L_j = m a
-        jac_g_.noalias() += (sd * u_[jN]) * v.dpsi_w;
-        jac_dux_[jN] = -m * sd * v.dpsi_w.dot(qdd);
+        jac_.g.noalias() += (sd * u_[jN]) * v.dpsi_w;
+        jac_.dux[jN] = -m * sd * v.dpsi_w.dot(qdd);
       } else {  // N0 a in r0
-        jac_g_.noalias() += (sd * dmp.preload) * v.dpsi_w;
+        jac_.g.noalias() += (sd * dmp.preload) * v.dpsi_w;
       }
       if (jf >= 0) {  // f - m b^T q'' = k x_d: F_j = -b, L_j = -m b
-        jac_g_.noalias() -= u_[jf] * v.dpsi_u;
-        jac_dux_[jf] = m * v.dpsi_u.dot(qdd);
+        jac_.g.noalias() -= u_[jf] * v.dpsi_u;
+        jac_.dux[jf] = m * v.dpsi_u.dot(qdd);
       }
     } else {
       const Scalar mu = mu_[i], V = e.V[i];
       dV = -v.dpsi_u.dot(qd);
       if (jN >= 0) {  // F_j = a + mu b, L_j = m (a - sc b), A_j = 1 - sc mu, c_j = N0 - m h + sc k x_d + m sc dd
         const Scalar Ni = u_[jN];
-        jac_g_.noalias() += Ni * (sd * v.dpsi_w + mu * v.dpsi_u);
+        jac_.g.noalias() += Ni * (sd * v.dpsi_w + mu * v.dpsi_u);
         Scalar rho = -m * sd * v.dpsi_w.dot(qdd), diag = Scalar(1);
         if (convective) {
           const Scalar sc = slope, dsc = dslope;
           const Scalar dw_qd = sd * v.dpsi_w.dot(qd), ddw_q = sd * v.ddpsi_w.dot(q);
-          const Scalar d_dw_qd = sd * v.ddpsi_w.dot(qd), d_ddw_q = sd * jac_d3w_.dot(q);
+          const Scalar d_dw_qd = sd * v.ddpsi_w.dot(qd), d_ddw_q = sd * jac_.d3w.dot(q);
           const Scalar du_qd = v.dpsi_u.dot(qd), dd = du_qd * V, d_dd = du_qd * dV;
           const Scalar dh = Scalar(2) * (d_dw_qd * V + dw_qd * dV) + d_ddw_q * V * V + Scalar(2) * ddw_q * V * dV;
           const Scalar dc = -m * dh + dsc * k * xi + m * dsc * dd + m * sc * d_dd;
@@ -309,21 +309,21 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
           diag = Scalar(1) - sc * mu;
         }
         const Scalar s_j = diag != Scalar(1) && abs(diag) >= Scalar(0.5) ? diag : Scalar(1);
-        jac_dux_[jN] = rho / s_j;
+        jac_.dux[jN] = rho / s_j;
       } else {  // N0 (a + mu b) in r0
-        jac_g_.noalias() += dmp.preload * (sd * v.dpsi_w + mu * v.dpsi_u);
+        jac_.g.noalias() += dmp.preload * (sd * v.dpsi_w + mu * v.dpsi_u);
       }
     }
-    auto du = jac_sol_.head(U);
+    auto du = jac_.sol.head(U);
     if (U > 0) {
-      jac_dux_.head(U).noalias() -= L_.topLeftCorner(n, U).transpose() * jac_g_;
-      du.noalias() = lu->solve(jac_dux_.head(U));
-      jac_dqdd_.noalias() = jac_g_ + F_.topLeftCorner(n, U) * du;
+      jac_.dux.head(U).noalias() -= L_.topLeftCorner(n, U).transpose() * jac_.g;
+      du.noalias() = lu->solve(jac_.dux.head(U));
+      jac_.dqdd.noalias() = jac_.g + F_.topLeftCorner(n, U) * du;
     } else {
-      jac_dqdd_ = jac_g_;
+      jac_.dqdd = jac_.g;
     }
     auto col = J.col(cX);
-    col.segment(n, n) = jac_dqdd_;
+    col.segment(n, n) = jac_.dqdd;
     // Per damper l: x_d'' (stick: b_l^T q''; slip: (-mu N_l - k x_d) / m), X' = V (moving slip)
     // and the audit's friction and slope power; dN_l, df_l from du.
     for (Index l = 0; l < D_; ++l) {
@@ -334,7 +334,7 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
       const Scalar dN = l_unknown >= 0 ? du[l_unknown] : Scalar(0);
       if (l_stuck) {
         const auto bl = C_.col(D_ + l).head(n);
-        col[xd_offset() + l] = bl.dot(jac_dqdd_) + (l == i ? v.dpsi_u.dot(qdd) : Scalar(0));
+        col[xd_offset() + l] = bl.dot(jac_.dqdd) + (l == i ? v.dpsi_u.dot(qdd) : Scalar(0));
         continue;
       }
       const Scalar mu = mu_[l];
@@ -356,13 +356,13 @@ bool FrictionDampedSystem<Scalar_, Law_, Modes>::contact_columns(const Mode& mod
 /// The LU of the tangent's capacitance matrix A + L^T F (U unknowns) of the last evaluation.
 template <class Scalar_, class Law_, int Modes>
 inline auto FrictionDampedSystem<Scalar_, Law_, Modes>::tangent_lu(Index U) -> Eigen::PartialPivLU<Matrix>& {
-  if (jac_lu_.size() <= static_cast<std::size_t>(U))  // U <= 2D: one slot per count, made once
-    jac_lu_.resize(static_cast<std::size_t>(std::max(U, 2 * D_) + 1));
-  Eigen::PartialPivLU<Matrix>& lu = jac_lu_[static_cast<std::size_t>(U)];
+  if (jac_.lu.size() <= static_cast<std::size_t>(U))  // U <= 2D: one slot per count, made once
+    jac_.lu.resize(static_cast<std::size_t>(std::max(U, 2 * D_) + 1));
+  Eigen::PartialPivLU<Matrix>& lu = jac_.lu[static_cast<std::size_t>(U)];
   if (lu.rows() != U) lu = Eigen::PartialPivLU<Matrix>(U);
-  jac_S_.noalias() = L_.topLeftCorner(n_, U).transpose() * F_.topLeftCorner(n_, U);
-  jac_S_.diagonal() += A_.head(U);
-  lu.compute(jac_S_);
+  jac_.S.noalias() = L_.topLeftCorner(n_, U).transpose() * F_.topLeftCorner(n_, U);
+  jac_.S.diagonal() += A_.head(U);
+  lu.compute(jac_.S);
   return lu;
 }
 
@@ -375,13 +375,13 @@ inline auto FrictionDampedSystem<Scalar_, Law_, Modes>::unknown_row(Index column
   return -1;
 }
 
-/// Damper i's shapes at its contact X into jac_shape_ (MemberShapes::evaluate).
+/// Damper i's shapes at its contact X into jac_.shape (MemberShapes::evaluate).
 template <class Scalar_, class Law_, int Modes>
 inline auto FrictionDampedSystem<Scalar_, Law_, Modes>::jacobian_shapes(
     Index i, Scalar X) -> const typename Shapes::Values& {
   const std::size_t iu = static_cast<std::size_t>(i);
-  shapes_[static_cast<std::size_t>(damper_shape_[iu])].evaluate(X, jac_shape_, cursors_[iu]);
-  return jac_shape_;
+  shapes_[static_cast<std::size_t>(damper_shape_[iu])].evaluate(X, jac_.shape, cursors_[iu]);
+  return jac_.shape;
 }
 
 }  // namespace stickslip

@@ -76,21 +76,21 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::impulse_response(const Mode& mo
   // dampers' impulses, x'' -> the jumps of their x'. The other contacts act through their rows:
   // a stuck damper's tangential and (inertial) normal constraint, a slipping one's normal
   // constraint without its friction impulse (mu = 0: a symmetric W, no work of the constraints).
-  lp_xs_.setZero();
-  if (options_.moving_contact) lp_xs_.segment(contact_offset(), D_) = x.segment(contact_offset(), D_);
-  lp_mu_.setZero();
-  for (Index j = 0; j < D_; ++j) std::swap(lp_preload_[static_cast<std::size_t>(j)],
+  lp_.xs.setZero();
+  if (options_.moving_contact) lp_.xs.segment(contact_offset(), D_) = x.segment(contact_offset(), D_);
+  lp_.mu.setZero();
+  for (Index j = 0; j < D_; ++j) std::swap(lp_.preload[static_cast<std::size_t>(j)],
                                            dampers_[static_cast<std::size_t>(j)].preload);
   const bool refine = options_.refine_stale_factorisation;
   options_.refine_stale_factorisation = false;
   factor_unknowns_ = -1;
   for (Index c = 0; c < 2; ++c) {
     modal(r0_) = modal(impulse_dir_.col(c));
-    solve_forces<true>(mode, lp_xs_);
+    solve_forces<true>(mode, lp_.xs);
     response_.col(c) = eval_.qdd;
     response_x_.col(c) = eval_.xdd;
   }
-  for (Index j = 0; j < D_; ++j) std::swap(lp_preload_[static_cast<std::size_t>(j)],
+  for (Index j = 0; j < D_; ++j) std::swap(lp_.preload[static_cast<std::size_t>(j)],
                                            dampers_[static_cast<std::size_t>(j)].preload);
   options_.refine_stale_factorisation = refine;
   factor_unknowns_ = -1;

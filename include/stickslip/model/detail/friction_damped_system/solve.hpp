@@ -53,7 +53,7 @@ inline void FrictionDampedSystem<Scalar_, Law_, Modes>::structural_r0(const Stat
 
 /// The solve after r0_ = r0 (docs/model_solve.md) is formed. Frozen (linear_part): every damper's
 /// rows as at a fixed contact at the state's X (a slipping damper's too: no convective terms,
-/// no slope coupling) with the slip coefficient lp_mu_ instead of the law's.
+/// no slope coupling) with the slip coefficient lp_.mu instead of the law's.
 template <class Scalar_, class Law_, int Modes>
 template <bool Frozen>
 inline void FrictionDampedSystem<Scalar_, Law_, Modes>::solve_forces(const Mode& mode, const State& x) const {
@@ -118,7 +118,7 @@ inline void FrictionDampedSystem<Scalar_, Law_, Modes>::solve_forces(const Mode&
       modal(F_.col(j)) = -b;
       modal(L_.col(j)) = -m * b;
     } else {  // slip rows (15-16 with 19 and 22): f_i = -mu_i N_i
-      const Scalar mu = Frozen ? lp_mu_[i] : slip_coefficient(i, s, V);
+      const Scalar mu = Frozen ? lp_.mu[i] : slip_coefficient(i, s, V);
       mu_[i] = mu;
       if (inertial) {
         const Index j = add_unknown(i, Scalar(1), dmp.preload, mu, Scalar(0));
