@@ -181,7 +181,7 @@ TEST(SteadyStateDenHartog, OrbitWithStopsEqualsTheLongTransientAndHasStickPhases
 // A frequency branch of continuous sliding (ratio 0.1, beta 0.6 -> 0.95 towards resonance) from a
 // section t0 placed 0.5 % of T after a reversal of the start orbit: Continuation moves the section to the
 // middle of the longest event-free interval before the first step (ContinuationOptions::
-// section_margin, 2 % of T), and again wherever a reversal comes within 2 % of T of it as the
+// section_margin, by default 2 % of T), and again wherever a reversal comes within 2 % of T of it as the
 // reversals' phase moves against the section's (the lag grows, and a fixed t0 is the phase
 // omega t0, which moves with omega). Every point is checked against the closed form at its own
 // t0 (tolerances as in ContinuousSlidingOrbitIsTheClosedForm); no accepted orbit has a reversal
@@ -198,7 +198,7 @@ TEST(SteadyStateDenHartog, FrequencyBranchMovesItsSectionAwayFromTheReversals) {
   co.initial_step = 0.02;
   co.max_step = 0.1;
   co.max_points = 300;
-  co.section_margin = 0.02;
+  // section_margin: the default, 2 % of T
   const Scene s0 = make_scene(0.6, ratio);
   const DenHartogOrbit ref0(kMass, kStiffness, kForce, s0.w, kMuK * s0.N, kMuK * s0.N);
   ASSERT_TRUE(ref0.valid);

@@ -42,6 +42,10 @@ stickslip::Continuation<Oscillator> ratio_continuation(Oscillator& sys, double l
                                                        int direction, double max_corrector_distance = 0) {
   stickslip::ContinuationOptions<double> co;
   co.max_corrector_distance = max_corrector_distance;
+  // A fixed section: where the branch enters the stuck family, a section moved away from the
+  // stick-slip orbits' events leads the corrector along other paths onto the family's 2-D set,
+  // and the checks below follow the branch through stick-slip on the start's section.
+  co.section_margin = 0;
   co.parameter_min = lo;
   co.parameter_max = hi;
   co.initial_step = 0.01;

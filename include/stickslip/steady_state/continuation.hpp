@@ -3,9 +3,12 @@
 /// \brief Continuation: a branch of forced periodic orbits followed in a scalar parameter by
 /// pseudo-arclength continuation (through folds), with stability along the branch.
 
+#include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/bifurcation.hpp>
+#include <stickslip/steady_state/progress.hpp>
 #include <stickslip/steady_state/shooting.hpp>
+#include <stickslip/steady_state/stall_diagnosis.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -44,11 +47,11 @@ struct ContinuationOptions {
   /// (mod T), t0 moves to the middle of the orbit's longest event-free interval before the next
   /// step (the last two points are carried there by a plain run of the shift, the secant taken
   /// between them): an event crossing t0 along the branch makes G kink there (the start mode
-  /// flips between iterates) and stalls the corrector. Each point's orbit reports its own t0. 0
-  /// (the default): t0 fixed along the branch. (Off by default: a branch into a family of
-  /// orbits, e.g. SteadyStateFamily's, takes other corrector paths on moved sections; the blade
-  /// example's --frc sets 0.02.)
-  Scalar section_margin = Scalar(0);
+  /// flips between iterates) and stalls the corrector. Each point's orbit reports its own t0.
+  /// Default 0.02 (2 % of a period: what the blade's and the grounded slider's frequency
+  /// responses need). 0: t0 fixed along the branch (a branch followed into a family of orbits,
+  /// e.g. a damper stuck all period, takes a different corrector path on a moved section).
+  Scalar section_margin = Scalar(0.02);
   /// > 0: the corrector first makes up to this many chord iterations: plain orbit runs (no
   /// monodromy, no dG/dp) solved with the last accepted point's [M - I, dG/dp] and the current
   /// tangent, while the residual at least halves per run; Newton's own iterations (a
@@ -59,6 +62,11 @@ struct ContinuationOptions {
   /// fast. Not after the section moved (the last M belongs to the old section). 0 (the
   /// default): Newton only.
   int chord_iterations = 0;
+  /// Called after each accepted point, before Continuation::on_point's function (empty: never),
+  /// with the points so far, the fraction of the range covered, the CPU seconds so far and an
+  /// estimate of the seconds to the end of the range (ContinuationProgress). SplitContinuation
+  /// calls it from each part's thread with that part's progress.
+  ContinuationProgressCallback progress;
 
   /// Throws std::invalid_argument("<where>: options.<name> ...") for an option out of range.
   void validate(const std::string& where) const {
@@ -345,6 +353,8 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
   if (opt_.chord_iterations > 0 && chord_valid_) chord(mode, t0, x, p, tau, y_pred, iterations);
   Vector r, gp, rhs(np + 1), dy(np + 1);
   Matrix J;
+  StallEvidence<Scalar> evidence;  // what the corrector's runs show when it stalls
+  Scalar res_prev = -1;
   for (newton = 1; newton <= opt_.max_corrector_iterations; ++newton) {
     ++iterations;
     if (!detail::is_finite(p) || !(period_(p) > 0)) {
@@ -359,6 +369,9 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
       return false;
     }
     const Scalar res = shooting_.residual(run.x_end, x, r);
+    evidence.note_run(t0, period_(p), run.events, run.grazing_events);
+    if (res_prev >= 0) evidence.note_residual(res_prev, res);
+    res_prev = res;
     if (res <= shooting_.tolerance_at(x)) {
       orbit = shooting_.make_orbit(run, mode, t0, x, period_(p), false, res, iterations);
       if (!orbit.ok()) why = orbit.message;
@@ -376,10 +389,10 @@ bool Continuation<System>::correct(Mode& mode, Scalar t0, State& x, Scalar& p,
     }
     const Vector y = pack(x, p) + dy;
     unpack(y, x, p);
-    why = "the corrector did not converge in " + std::to_string(opt_.max_corrector_iterations) +
-          " iterations (residual " + detail::format_value(res) +
-          "; the response may be quasi-periodic or chaotic here)";
   }
+  why = "the corrector did not converge in " + std::to_string(opt_.max_corrector_iterations) +
+        " iterations (residual " + detail::format_value(res_prev) + "); detected: " +
+        evidence.describe(true, opt_.section_margin);
   return false;
 }
 
@@ -456,6 +469,23 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
     detail::throw_invalid(where, "p0 must lie in [options.parameter_min, options.parameter_max]",
                           p0);
   Result result;
+  const double cpu0 = detail::thread_cpu_seconds();  // options.progress's clock
+  double cpu_last = cpu0;
+  const Scalar p_end = opt_.direction > 0 ? opt_.parameter_max : opt_.parameter_min;
+  auto report = [&](Scalar p_now) {
+    if (!opt_.progress) return;
+    ContinuationProgress pr;
+    pr.points = static_cast<int>(result.points.size());
+    pr.max_points = opt_.max_points;
+    pr.parameter = static_cast<double>(p_now);
+    pr.covered = p_end == p0 ? 1.0 : std::clamp(static_cast<double>((p_now - p0) / (p_end - p0)), 0.0, 1.0);
+    const double now = detail::thread_cpu_seconds();
+    pr.cpu_seconds = now - cpu0;
+    pr.seconds_per_point = now - cpu_last;
+    cpu_last = now;
+    pr.remaining_seconds = detail::branch_remaining(pr.covered, pr.cpu_seconds, pr.points, pr.max_points);
+    opt_.progress(pr);
+  };
   P_ = shooting_.options().periodic_indices(x0_guess.size());
   const auto np = static_cast<Eigen::Index>(P_.size());
   set_(sys_, p0);
@@ -486,6 +516,7 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
   State x = orbit.x0;
   Scalar p = p0;
   result.points.push_back({p, orbit, Scalar(0), false});
+  report(p);
   if (on_point_) on_point_(result.points.back());
 
   // Start tangent: dG/dx_P v = -dG/dp (the least v when M - I is singular: a family),
@@ -587,6 +618,7 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
     p = p_new;
     mode = mode_new;
     result.points.push_back(std::move(point));
+    report(p);
     if (on_point_) on_point_(result.points.back());
     // (Newton's iterations: a point the chord converged counts as fast)
     if (newton <= opt_.fast_iterations)

@@ -3,10 +3,12 @@
 /// \brief Shooting: periodic orbits of a hybrid system by Newton's method on x(T) - x(0) = 0,
 /// forced (period given) or autonomous (period unknown, with a phase condition).
 
+#include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/floquet.hpp>
 #include <stickslip/steady_state/period_run.hpp>
 #include <stickslip/steady_state/shooting_options.hpp>
+#include <stickslip/steady_state/stall_diagnosis.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -226,7 +228,9 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
     o.message = "x(t0 + T) = x(t0) to " + detail::format_value(residual) +
                 " but the mode at t0 + T differs from the start mode (" +
                 std::to_string(run.events.size()) +
-                " events in the period): the orbit starts on a switching surface, or the "
+                " events in the period): an event at the period start (the orbit starts on a "
+                "switching surface: start it from another t0, away from its events; "
+                "Continuation does so with ContinuationOptions::section_margin > 0), or the "
                 "response is not periodic with this period";
   }
   return o;
@@ -266,11 +270,29 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
                      to_string(run.status) + "): " + run.message;
     return failed;
   };
+  const double cpu0 = detail::thread_cpu_seconds();  // ShootingOptions::progress's clock
   PeriodRun<System> run = run_period(sys_, mode, t0, x, T, opt_, true);
   ++runs;
   if (!run.ok()) return run_failed(run, 0);
   Scalar res = residual(run.x_end, x, r);
+  StallEvidence<Scalar> evidence;  // what the runs show when Newton stalls
+  evidence.note_run(t0, T, run.events, run.grazing_events);
+  double res_before = -1;  // the residual one iteration earlier (the contraction rate)
   for (int it = 1;; ++it) {
+    if (opt_.progress) {
+      ShootingProgress pr;
+      pr.iteration = it - 1;
+      pr.max_iterations = opt_.max_iterations;
+      pr.runs = runs;
+      pr.residual = static_cast<double>(res);
+      pr.tolerance = static_cast<double>(tolerance_at(x));
+      pr.cpu_seconds = detail::thread_cpu_seconds() - cpu0;
+      pr.remaining_seconds = detail::newton_remaining(pr.residual, res_before, pr.tolerance,
+                                                      opt_.max_iterations - (it - 1),
+                                                      pr.cpu_seconds / it);
+      opt_.progress(pr);
+    }
+    res_before = static_cast<double>(res);
     failed.x0 = x;
     failed.period = T;
     failed.iterations = runs;
@@ -299,9 +321,8 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
       failed.status = ShootingStatus::NoConvergence;
       failed.message = "Newton did not converge in " + std::to_string(opt_.max_iterations) +
                        " iterations: residual " + detail::format_value(res) + " > tolerance " +
-                       detail::format_value(tolerance_at(x)) +
-                       " (the response may be quasi-periodic or chaotic, or the guess too far "
-                       "from a periodic orbit)";
+                       detail::format_value(tolerance_at(x)) + "; detected: " +
+                       evidence.describe(false);
       return failed;
     }
     J.setZero();
@@ -348,6 +369,8 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
       Vector rt;
       const Scalar res_t = residual(trial.x_end, xt, rt);
       if (res_t < res || last) {
+        evidence.note_run(t0, Tt, trial.events, trial.grazing_events);
+        if (!(res_t < res)) evidence.note_residual(res, res_t);
         x = xt;
         T = Tt;
         run = std::move(trial);

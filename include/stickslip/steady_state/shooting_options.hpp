@@ -5,6 +5,7 @@
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/stepper_options.hpp>
 #include <stickslip/steady_state/interrupt.hpp>
+#include <stickslip/steady_state/progress.hpp>
 
 #include <Eigen/Core>
 
@@ -92,6 +93,10 @@ struct ShootingOptions {
   /// run ends with Status::StoppedByObserver and a message starting "interrupted", Shooting
   /// returns IntegrationFailed, Continuation the status Interrupted (see InterruptCheck).
   InterruptCheck interrupt;
+  /// Called after the run of the guess and after every Newton iteration of Shooting (empty:
+  /// never) with the residual, the CPU seconds so far and an estimate of the seconds left
+  /// (ShootingProgress): a long orbit (many modes, many events) tells what it costs as it goes.
+  ShootingProgressCallback progress;
 
   /// The indices 0 .. count-1 (e.g. the mechanical states of a system whose last components are
   /// quadratures).
