@@ -108,19 +108,21 @@ void compare(double preload, double duration, std::size_t min_events, bool expec
     EXPECT_EQ(mirrored(ea[k].to), eb[k].to) << k;
     worst = std::max(worst, std::abs(ea[k].t - eb[k].t));
   }
-  // Both integrate the same equations at rtol 1e-11 with their own arithmetic (element-space
-  // products against full shape vectors, an N solve against a capacitance LU): the event times
-  // differ by the integration and location error, ~1e-9 s over these runs; 1e-8 s is a thousandth
-  // of a sample interval and fails for a missing convective term (measured ~1e-6 s).
-  EXPECT_LE(worst, 1e-8) << "largest event-time difference";
-  // Tip displacement at every sample to 1e-6 of its amplitude (the same integration error).
+  // Both integrate the same equations at rtol 1e-11 with their own arithmetic and states
+  // (element-space products against full shape vectors, an N solve against a capacitance LU, the
+  // damper's y slaved against the body's y held at the velocity level): the event times differ by
+  // the integration and location error (measured 1.1e-12 s at most over these runs, the location
+  // bracket 1e-12 s); 1e-10 s leaves a factor 100.
+  EXPECT_LE(worst, 1e-10) << "largest event-time difference";
+  // Tip displacement at every sample to 1e-8 of its amplitude (measured 1.5e-10: the same
+  // integration error, growing through the stick-slip switches).
   ASSERT_EQ(ta.tip.size(), tb.tip.size());
   double amp = 0, diff = 0;
   for (std::size_t k = 0; k < ta.tip.size(); ++k) {
     amp = std::max(amp, std::abs(ta.tip[k]));
     diff = std::max(diff, std::abs(ta.tip[k] - tb.tip[k]));
   }
-  EXPECT_LE(diff, 1e-6 * amp) << "tip displacement difference of " << amp;
+  EXPECT_LE(diff, 1e-8 * amp) << "tip displacement difference of " << amp;
   ::testing::Test::RecordProperty("events", static_cast<int>(ea.size()));
   char measured[96];
   std::snprintf(measured, sizeof measured, "%.3g s, %.3g", worst, diff / amp);
@@ -128,11 +130,11 @@ void compare(double preload, double duration, std::size_t min_events, bool expec
   if (expect_stick_only) {
     for (const auto& e : eb) EXPECT_EQ(e.to, ContactState::Stick);
   }
-  // Both energy audits close (rtol 1e-11: ~1e-10 of the work).
+  // Both energy audits close (rtol 1e-11: measured 5e-12 at most; 1e-10 leaves a factor 20).
   const auto ba = fds.energy_balance(ra.mode, ra.t, ra.x, Ea);
   const auto bb = sys.energy_balance(rb.x, Eb);
-  EXPECT_LE(ba.relative_residual(), 1e-8);
-  EXPECT_LE(bb.relative_residual(), 1e-8) << bb.residual << " of " << bb.scale;
+  EXPECT_LE(ba.relative_residual(), 1e-10);
+  EXPECT_LE(bb.relative_residual(), 1e-10) << bb.residual << " of " << bb.scale;
 }
 
 // The paper's three regimes at the blade example's preloads (blade_regression_test's cases).
