@@ -15,6 +15,8 @@
 #include "stickslip/model/rigid_body.hpp"
 #include "stickslip/model/wedge_damper.hpp"
 #include "stickslip/model/point_damper.hpp"
+#include "stickslip/model/point_damper_body.hpp"
+#include "stickslip/model/any_contact.hpp"
 #include "stickslip/model/point_load.hpp"
 #include "stickslip/model/separation.hpp"
 #include "stickslip/model/simulate.hpp"

@@ -14,7 +14,14 @@
 /// unknown of the coupled solve that holds v_n' = 0; the contact opens (Separated) when N reaches
 /// zero, and closes again when the gap reaches zero, with an impact of restitution e.
 /// The forces on side a are N n + f t (and the opposite on side b).
+///
+/// Side b moving (contact_point = ContactPoint::Moving, the paper's damper, eq. 10): side b is the
+/// member point currently under the body point, at the contact coordinate X along the member
+/// (X0 = b->coordinate), which the system integrates with X' = (t . u) v (u the member's axis, to
+/// which t must be parallel). The rows then hold the member's shapes at X, and the gap's rate
+/// adds the member's slope under the moving point (docs/contacts.md, "A moving contact point").
 
+#include <stickslip/model/contact_point.hpp>
 #include <stickslip/model/point_damper.hpp>
 #include <stickslip/model/rigid_body.hpp>
 #include <stickslip/model/structure_point.hpp>
@@ -43,6 +50,9 @@ struct BodyContact {
   Scalar initial_gap = Scalar(0);          ///< g0: the gap with every coordinate zero [m], >= 0
   /// State at the start of a run: Stick, a slip state (closed) or Separated (open).
   ContactState initial_state = ContactState::Stick;
+  /// Side b a fixed material point (Fixed) or the member point under the body point, moving
+  /// along the member with the sliding (Moving; needs b, with 0 < b->coordinate < length).
+  ContactPoint contact_point = ContactPoint::Fixed;
 
   /// `point` on ground whose surface has normal `normal`.
   static BodyContact on_ground(BodyPoint<Scalar> point, PlaneDirection<Scalar> normal, Law law,
@@ -79,6 +89,10 @@ struct BodyContact {
   Scalar restitution_coefficient() const noexcept { return restitution; }
   /// g0.
   Scalar gap_at_reference() const noexcept { return initial_gap; }
+  /// Whether side b moves along its member.
+  ContactPoint side_b_motion() const noexcept { return contact_point; }
+  /// Side b (none: ground).
+  const std::optional<StructurePoint<Scalar>>& structure_side() const noexcept { return b; }
 
   /// The structure's part of the sliding velocity's row: -t . u_b' = row . q' (zero on ground).
   Vector tangential_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis,
@@ -93,7 +107,8 @@ struct BodyContact {
   /// \throws std::invalid_argument naming `where` and the parameter: a normal that is not a
   ///         unit vector, a non-finite body point, a negative body index, a restitution outside
   ///         [0, 1], a negative or non-finite initial gap, an initial state that is not Stick,
-  ///         SlipPositive, SlipNegative or Separated. (Whether a.body names a body of the scene is
+  ///         SlipPositive, SlipNegative or Separated, a moving contact point without side b.
+  ///         (Whether a.body names a body of the scene is
   ///         checked by the system.)
   void validate(const std::string& where) const {
     normal.validate(where, "normal");
@@ -113,6 +128,10 @@ struct BodyContact {
         detail::throw_invalid(where, "initial_state must be Stick, SlipPositive, SlipNegative or Separated",
                               static_cast<int>(initial_state));
     }
+    if (contact_point != ContactPoint::Fixed && contact_point != ContactPoint::Moving)
+      detail::throw_invalid(where, "contact_point must be Fixed or Moving", static_cast<int>(contact_point));
+    if (contact_point == ContactPoint::Moving && !b)
+      detail::throw_invalid(where, "contact_point = Moving needs a side b on the structure (b)", 0);
     if (initial_gap > Scalar(0) && initial_state != ContactState::Separated)
       detail::throw_invalid(where, "initial_gap > 0 needs initial_state = Separated", initial_gap);
   }

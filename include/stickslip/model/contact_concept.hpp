@@ -28,9 +28,20 @@
 ///
 /// tangential_row() is then the structure part of the sliding velocity's row; the body part
 /// [t, t . (k x R(theta) r)] is added by the system at each evaluation.
+///
+/// A type that holds contacts of either sort (AnyContact) supplies all of the above and
+///
+///     bool body_side() const;                               // this contact has the body side
+///
+/// read once per contact at assembly; without it every contact of a has_body_side_v type has one.
+/// A body-side contact whose side b may move along its member (BodyContact) supplies
+///
+///     ContactPoint side_b_motion() const;                   // Fixed or Moving
+///     std::optional<StructurePoint<Scalar>> structure_side() const;  // side b, its X0
 
 #include <stickslip/beam/frame_model.hpp>
 #include <stickslip/contact/contact_state.hpp>
+#include <stickslip/model/contact_point.hpp>
 #include <stickslip/modal/modal_basis.hpp>
 #include <stickslip/model/rigid_body.hpp>
 #include <stickslip/model/structure_point.hpp>
@@ -88,5 +99,40 @@ struct has_body_side<
 /// has_body_side<C>::value.
 template <class C>
 inline constexpr bool has_body_side_v = has_body_side<C>::value;
+
+namespace detail {
+
+template <class C, class = void>
+struct has_body_side_query : std::false_type {};
+template <class C>
+struct has_body_side_query<C, std::void_t<decltype(std::declval<const C&>().body_side())>> : std::true_type {};
+
+/// Whether contact c has the body side: c.body_side() when C can hold either sort, else
+/// has_body_side_v<C>.
+template <class C>
+bool body_side_of(const C& c) {
+  if constexpr (has_body_side_query<C>::value)
+    return static_cast<bool>(c.body_side());
+  else
+    return has_body_side_v<C>;
+}
+
+template <class C, class = void>
+struct has_moving_side_query : std::false_type {};
+template <class C>
+struct has_moving_side_query<C, std::void_t<decltype(std::declval<const C&>().side_b_motion()),
+                                            decltype(std::declval<const C&>().structure_side())>>
+    : std::true_type {};
+
+/// Whether contact c's side b moves along its member (c.side_b_motion() when C supplies it).
+template <class C>
+bool moving_side_of(const C& c) {
+  if constexpr (has_moving_side_query<C>::value)
+    return c.side_b_motion() == ContactPoint::Moving;
+  else
+    return false;
+}
+
+}  // namespace detail
 
 }  // namespace stickslip

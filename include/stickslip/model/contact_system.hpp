@@ -18,6 +18,9 @@
 /// C = G M^-1 B^T (the capacitance form; G holds the constrained rows, B the rows the unknowns
 /// act along: h_i + mu_i g_i for a slipping contact's N_i). f_required = lambda drives component
 /// 4's stick guards, N_i = 0 a closed contact's lift-off guard, the gap a separated one's landing.
+/// A contact whose side b moves along its member (contact_system_moving.hpp) has its rows at the
+/// current contact coordinate X (a state, X' = (t . u) v), holds its gap on the row h_i - (t . u)
+/// s_i g_i (s_i the member's slope under it) and adds the convective terms of paper eqs 17-19.
 
 #include <stickslip/beam/frame_model.hpp>
 #include <stickslip/contact/contact_state.hpp>
@@ -26,6 +29,8 @@
 #include <stickslip/model/contact_concept.hpp>
 #include <stickslip/model/damper_states.hpp>
 #include <stickslip/model/detail/contact_machine.hpp>
+#include <stickslip/model/detail/moving_contact.hpp>
+#include <stickslip/model/any_contact.hpp>
 #include <stickslip/model/body_contact.hpp>
 #include <stickslip/model/point_contact.hpp>
 #include <stickslip/model/point_load.hpp>
@@ -59,7 +64,7 @@ struct ContactSystemOptions {
 /// Structure (a frame's retained modes) + planar rigid bodies + contacts + point loads, as a
 /// HybridSystem (docs/ode.md) for simulate(), the steady states and the sweeps. `Contact` is any
 /// type of the contact concept (contact_concept.hpp): PointContact by default, BodyContact for
-/// contacts of rigid-body points with unilateral normals.
+/// contacts of rigid-body points with unilateral normals, AnyContact for a scene with both.
 ///
 /// Thread safety: a ContactSystem holds the workspace of its solve; one object serves one run
 /// at a time. Copy it for concurrent runs (copies share nothing).
@@ -84,7 +89,8 @@ class ContactSystem {
   using Load = PointLoad<Scalar>;                             ///< external point load
   using Body = RigidBody<Scalar>;                             ///< planar rigid body
   using Options = ContactSystemOptions<Scalar>;               ///< options
-  /// True when the contacts have a rigid-body side and a unilateral normal (has_body_side_v).
+  /// True when the contacts may have a rigid-body side and a unilateral normal (has_body_side_v;
+  /// per contact, detail::body_side_of).
   static constexpr bool body_contacts = has_body_side_v<Contact>;
 
   /// One contact switch, logged by transition() and make_consistent().
@@ -101,8 +107,11 @@ class ContactSystem {
     Vector f;     ///< friction force on side a of each contact along its direction [N]
     Vector v;     ///< sliding velocity of side a over side b [m/s]
     Vector N;     ///< normal force [N] (0 for an open unilateral contact)
-    Vector vn;    ///< normal velocity of side a over side b (0 under a held normal) [m/s]
+    /// Normal velocity of side a over side b's material point (0 under a held normal) [m/s];
+    /// under a moving side b the gap's rate is vn - s X' (s the member's slope there).
+    Vector vn;
     Vector gap;   ///< gap of a unilateral contact (0 under a held normal) [m]
+    Vector X;     ///< contact coordinate of a side b that moves along its member (0 otherwise) [m]
     bool finite = true;  ///< false when the solve failed (dependent constraint rows) or x is not finite
   };
 
@@ -139,8 +148,14 @@ class ContactSystem {
   Index num_bodies() const noexcept { return B_; }                                 ///< rigid bodies
   Index num_coordinates() const noexcept { return m_; }                            ///< n + 3 bodies
   Index num_contacts() const noexcept { return D_; }                               ///< D
-  Index state_size() const noexcept { return 2 * m_ + (options_.energy_audit ? 3 : 0); }  ///< 2(n + 3B) (+ 3)
+  /// 2(n + 3B) (+ 3 audit integrals) + one contact coordinate per moving side b.
+  Index state_size() const noexcept { return contact_offset() + num_moving(); }
   Index audit_offset() const noexcept { return 2 * m_; }  ///< first audit integral (W_ext, D_visc, D_fric)
+  /// Contacts whose side b moves along its member (BodyContact::contact_point = Moving).
+  Index num_moving() const noexcept { return static_cast<Index>(moving_.size()); }
+  /// Index in the state of the first moving contact's coordinate X (after the audit integrals;
+  /// the others follow in the contacts' order).
+  Index contact_offset() const noexcept { return 2 * m_ + (options_.energy_audit ? 3 : 0); }
   /// Index of body b's x in z (y, theta follow; its velocities at num_coordinates() later).
   Index body_offset(Index b) const noexcept { return n_ + 3 * b; }
   const std::vector<Contact>& contacts() const noexcept { return contacts_; }     ///< the contacts
@@ -151,8 +166,8 @@ class ContactSystem {
   /// s_i = w_i . q).
   auto contact_row(Index i) const { return W_.row(i).transpose(); }
 
-  /// Rest: z = z' = 0, audit integrals 0.
-  State initial_state() const { return State::Zero(state_size()); }
+  /// Rest: z = z' = 0, audit integrals 0, each moving contact at its X0.
+  State initial_state() const;
   /// Each contact's start_state().
   Mode requested_mode() const;
 
@@ -182,7 +197,8 @@ class ContactSystem {
   /// dx/dt = (z', z'', audit powers).
   void rhs(const Mode& mode, Scalar t, const State& x, State& dxdt);
   /// Guards of every contact in order (component 4: stick 2, slip 1, regularised 0; a closed
-  /// unilateral contact adds its normal force; an open one has its gap).
+  /// unilateral contact adds its normal force; an open one has its gap), then X and L - X of
+  /// each moving side b (a member end stops the run).
   Index num_guards(const Mode& mode) const;
   /// Guard values (CoulombContact::guards / gap_guard of each contact).
   void guards(const Mode& mode, Scalar t, const State& x, GuardVector& g);
@@ -227,6 +243,16 @@ class ContactSystem {
     return detail::with_law(machines_[static_cast<std::size_t>(i)],
                                 [&](const auto& m) { return m.num_guards(mode[i], unilateral(i)); });
   }
+  void assemble_body_side(Index i, const Contact& c, const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis,
+                          const std::string& name);
+  void assemble_moving_side(Index i, const Contact& c, const FrameModel<Scalar>& frame,
+                            const ModalBasis<Scalar>& basis, const std::string& name);
+  void moving_rows(const State& x) const;
+  void moving_rates(const State& x) const;
+  Index contact_guards(const Mode& mode) const;
+  /// The row of contact i's gap rate: the normal row, less the slope's share of the sliding row
+  /// under a moving side b.
+  auto gap_rate_row(Index i) const { return moving_of_[static_cast<std::size_t>(i)] >= 0 ? Hc_.row(i) : H_.row(i); }
   bool resolve(Mode& mode, Scalar t, State& x);
   bool impulse(const Mode& mode, Scalar t, State& x);
   void spring_extension(const State& x, Index b, const BodySpring<Scalar>& spring, Scalar& delta, Scalar& rate,
@@ -249,6 +275,8 @@ class ContactSystem {
   std::vector<Vector2> point_, tdir_, ndir_;
   Vector restitution_, gap0_;
   std::vector<Machine> machines_;
+  mutable std::vector<detail::MovingSide<Scalar>> moving_;  // contacts whose side b moves
+  std::vector<Index> moving_of_;           // slot in moving_ of contact i, -1 when side b is fixed
   std::vector<ContactEvent> events_;
   std::vector<char> landing_;              // contacts landing at this transition
 
@@ -256,6 +284,7 @@ class ContactSystem {
   mutable Evaluation e_;
   mutable Vector r_;                      // m: known generalised forces
   mutable Matrix G_, H_;                  // D x m: full sliding / normal velocity rows
+  mutable Matrix Hc_;                     // D x m: gap-rate rows of moving contacts (gap_rate_row)
   mutable Vector gdot_, hdot_;            // D: G' z', H' z' (the rows' rates times z')
   mutable Vector mu_;                     // D: f = mu N of a non-stuck closed unilateral contact
   mutable Matrix rows_, cols_;            // 2D x m: constrained rows, directions of the unknowns

@@ -16,10 +16,15 @@ auto ContactSystem<Scalar_, Contact_>::requested_mode() const -> Mode {
 }
 
 template <class Scalar_, class Contact_>
-auto ContactSystem<Scalar_, Contact_>::num_guards(const Mode& mode) const -> Index {
+auto ContactSystem<Scalar_, Contact_>::contact_guards(const Mode& mode) const -> Index {
   Index k = 0;
   for (Index i = 0; i < D_; ++i) k += guards_of(mode, i);
   return k;
+}
+
+template <class Scalar_, class Contact_>
+auto ContactSystem<Scalar_, Contact_>::num_guards(const Mode& mode) const -> Index {
+  return contact_guards(mode) + 2 * num_moving();  // each moving side b: X and L - X
 }
 
 template <class Scalar_, class Contact_>
@@ -36,6 +41,11 @@ void ContactSystem<Scalar_, Contact_>::guards(const Mode& mode, Scalar t, const 
     });
     k += guards_of(mode, i);
   }
+  for (Index p = 0; p < num_moving(); ++p) {
+    const Scalar X = x[contact_offset() + p];
+    g[k++] = X;
+    g[k++] = moving_[static_cast<std::size_t>(p)].shapes.length() - X;
+  }
 }
 
 template <class Scalar_, class Contact_>
@@ -47,6 +57,7 @@ CrossingDirection ContactSystem<Scalar_, Contact_>::guard_direction(const Mode& 
                               [&](const auto& m) { return m.guard_direction(mode[i], idx, unilateral(i)); });
     idx -= gi;
   }
+  if (idx < 2 * num_moving()) return CrossingDirection::Falling;  // a moving side b reaching a member end
   STICKSLIP_ASSERT(false && "ContactSystem::guard_direction: index beyond num_guards");
   return CrossingDirection::Either;
 }
@@ -114,6 +125,15 @@ template <class Scalar_, class Contact_>
 TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const TriggeredGuards& which, Scalar t,
                                                               State& x) {
   const Mode before = mode;
+  const Index end_guards = contact_guards(before);
+  for (Index idx : which) {  // a moving side b at a member end: its shapes end there
+    if (idx < end_guards) continue;
+    const auto& side = moving_[static_cast<std::size_t>((idx - end_guards) / 2)];
+    return TransitionAction::halt("contact " + std::to_string(side.contact) + " left member " +
+                                  std::to_string(side.shapes.member()) + " at X = " +
+                                  detail::format_value(x[contact_offset() + (idx - end_guards) / 2]) +
+                                  " at t = " + detail::format_value(t));
+  }
   solve(mode, t, x);
   bool landing = false;
   for (Index idx : which) {
@@ -144,7 +164,7 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
       const std::size_t iu = static_cast<std::size_t>(i);
       if (!landing_[iu]) continue;
       landing_[iu] = 0;
-      const bool bounces = consistent && H_.row(i).dot(x.segment(m_, m_)) > options_.velocity_tolerance;
+      const bool bounces = consistent && gap_rate_row(i).dot(x.segment(m_, m_)) > options_.velocity_tolerance;
       mode[i] = bounces ? ContactState::Separated : ContactState::Stick;
       if (bounces) events_.push_back({t, i, ContactState::Separated, ContactState::Separated});
     }

@@ -41,6 +41,7 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   ndir_.assign(contacts_.size(), Vector2::Zero());
   restitution_.setZero(D_);
   gap0_.setZero(D_);
+  moving_of_.assign(contacts_.size(), -1);
   machines_.reserve(contacts_.size());
   for (Index i = 0; i < D_; ++i) {
     const std::size_t iu = static_cast<std::size_t>(i);
@@ -50,27 +51,11 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
     W_.row(i) = c.tangential_row(frame, basis, name).transpose();
     bool moves = W_.row(i).squaredNorm() > 0;
     if constexpr (body_contacts) {
-      const BodyPoint<Scalar> side_a = c.body_point();
-      if (side_a.body < 0 || side_a.body >= B_)
-        detail::throw_invalid(name, "a.body must name a body of the scene (" + std::to_string(B_) + " bodies)",
-                              side_a.body);
-      const PlaneDirection<Scalar> t = c.tangent_direction(), n = c.normal_direction();
-      t.validate(name, "tangent");
-      n.validate(name, "normal");
-      if (!(std::abs(t.x * n.x + t.y * n.y) <= Scalar(1e-9)))
-        detail::throw_invalid(name, "tangent must be perpendicular to the normal, t . n =", t.x * n.x + t.y * n.y);
-      const Scalar e = c.restitution_coefficient();
-      if (!(e >= Scalar(0) && e <= Scalar(1))) detail::throw_invalid(name, "restitution must lie in [0, 1]", e);
-      detail::require_non_negative(name, "initial_gap", c.gap_at_reference());
-      Wn_.row(i) = c.normal_row(frame, basis, name).transpose();
-      unilateral_[iu] = 1;
-      body_of_[iu] = side_a.body;
-      point_[iu] = side_a.point;
-      tdir_[iu] = Vector2(t.x, t.y);
-      ndir_[iu] = Vector2(n.x, n.y);
-      restitution_[i] = e;
-      gap0_[i] = c.gap_at_reference();
-      moves = true;  // the body point's own row [t, t . (k x R r)] is never zero
+      if (detail::body_side_of(c)) {
+        assemble_body_side(i, c, frame, basis, name);
+        if (detail::moving_side_of(c)) assemble_moving_side(i, c, frame, basis, name);
+        moves = true;  // the body point's own row [t, t . (k x R r)] is never zero
+      }
     }
     if (!moves)
       detail::throw_invalid(name, "its sides do not move apart in the retained modes (zero row); it could never slip",
@@ -88,11 +73,13 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   e_.N.setZero(D_);
   e_.vn.setZero(D_);
   e_.gap.setZero(D_);
+  e_.X.setZero(D_);
   r_.setZero(m_);
   G_.setZero(D_, m_);
   H_.setZero(D_, m_);
   G_.leftCols(n_) = W_;
   H_.leftCols(n_) = Wn_;
+  Hc_ = H_;
   gdot_.setZero(D_);
   hdot_.setZero(D_);
   mu_.setZero(D_);
@@ -106,6 +93,32 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   unknown_.reserve(2 * contacts_.size());
   landing_.assign(contacts_.size(), 0);
   events_.reserve(64);
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::assemble_body_side(Index i, const Contact& c, const FrameModel<Scalar>& frame,
+                                                          const ModalBasis<Scalar>& basis, const std::string& name) {
+  const std::size_t iu = static_cast<std::size_t>(i);
+  const BodyPoint<Scalar> side_a = c.body_point();
+  if (side_a.body < 0 || side_a.body >= B_)
+    detail::throw_invalid(name, "a.body must name a body of the scene (" + std::to_string(B_) + " bodies)",
+                          side_a.body);
+  const PlaneDirection<Scalar> t = c.tangent_direction(), n = c.normal_direction();
+  t.validate(name, "tangent");
+  n.validate(name, "normal");
+  if (!(std::abs(t.x * n.x + t.y * n.y) <= Scalar(1e-9)))
+    detail::throw_invalid(name, "tangent must be perpendicular to the normal, t . n =", t.x * n.x + t.y * n.y);
+  const Scalar e = c.restitution_coefficient();
+  if (!(e >= Scalar(0) && e <= Scalar(1))) detail::throw_invalid(name, "restitution must lie in [0, 1]", e);
+  detail::require_non_negative(name, "initial_gap", c.gap_at_reference());
+  Wn_.row(i) = c.normal_row(frame, basis, name).transpose();
+  unilateral_[iu] = 1;
+  body_of_[iu] = side_a.body;
+  point_[iu] = side_a.point;
+  tdir_[iu] = Vector2(t.x, t.y);
+  ndir_[iu] = Vector2(n.x, n.y);
+  restitution_[i] = e;
+  gap0_[i] = c.gap_at_reference();
 }
 
 template <class Scalar_, class Contact_>
@@ -131,6 +144,16 @@ void ContactSystem<Scalar_, Contact_>::validate_state(const Mode& mode, const St
     detail::throw_invalid(where, "mode[" + std::to_string(i) + "] must be Stick, SlipPositive or SlipNegative" +
                                      (unilateral(i) ? " or Separated" : " under a held normal") + ", got",
                           static_cast<int>(s));
+  }
+  for (Index p = 0; p < num_moving(); ++p) {
+    const auto& side = moving_[static_cast<std::size_t>(p)];
+    const Scalar X = x[contact_offset() + p];
+    if (!side.shapes.contains(X))
+      detail::throw_invalid(where, "x[" + std::to_string(contact_offset() + p) + "], the contact coordinate X of contact " +
+                                       std::to_string(side.contact) + ", must lie on member " +
+                                       std::to_string(side.shapes.member()) + " ([0, " +
+                                       detail::format_value(side.shapes.length()) + "]), got",
+                            X);
   }
 }
 
@@ -158,6 +181,10 @@ void ContactSystem<Scalar_, Contact_>::rhs(const Mode& mode, Scalar t, const Sta
   dxdt.resize(state_size());
   dxdt.head(m_) = x.segment(m_, m_);
   dxdt.segment(m_, m_) = e_.qdd;
+  for (Index p = 0; p < num_moving(); ++p) {  // X' = (t . u) v
+    const auto& side = moving_[static_cast<std::size_t>(p)];
+    dxdt[contact_offset() + p] = side.sigma_t * e_.v[side.contact];
+  }
   if (options_.energy_audit) {
     const auto qd = x.segment(m_, n_);
     Scalar external = 0, viscous = damping_.dot(qd.cwiseAbs2());
@@ -242,4 +269,5 @@ auto ContactSystem<Scalar_, Contact_>::linear_rates() const -> std::vector<std::
 }  // namespace stickslip
 
 #include <stickslip/model/detail/contact_system_events.hpp>
+#include <stickslip/model/detail/contact_system_moving.hpp>
 #include <stickslip/model/detail/contact_system_solve.hpp>

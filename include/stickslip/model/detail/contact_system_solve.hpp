@@ -36,6 +36,7 @@ void ContactSystem<Scalar_, Contact_>::contact_kinematics(const State& x) const 
   // and the body point's [d, d . (k x R r)]; their rates times z' are -omega^2 d . R r (the
   // centripetal acceleration of the point); the gap n . ((x, y) + (R - I) r) + w_n . q + g0.
   const auto zd = x.segment(m_, m_);
+  moving_rows(x);
   for (Index i = 0; i < D_; ++i) {
     const std::size_t iu = static_cast<std::size_t>(i);
     const Index body = body_of_[iu];
@@ -48,11 +49,12 @@ void ContactSystem<Scalar_, Contact_>::contact_kinematics(const State& x) const 
       gdot_[i] = -omega * omega * tdir_[iu].dot(Rr);
       hdot_[i] = -omega * omega * ndir_[iu].dot(Rr);
       e_.gap[i] = ndir_[iu].x() * x[o] + ndir_[iu].y() * x[o + 1] + ndir_[iu].dot(Rr - point_[iu]) +
-                  Wn_.row(i).dot(x.head(n_)) + gap0_[i];
+                  H_.row(i).head(n_).dot(x.head(n_)) + gap0_[i];
     }
     e_.v[i] = G_.row(i).dot(zd);
     e_.vn[i] = H_.row(i).dot(zd);
   }
+  moving_rates(x);
 }
 
 template <class Scalar_, class Contact_>
@@ -106,7 +108,7 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
     for (Index a = 0; a < U; ++a) {
       const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
       if (k >= D_) {
-        rows_.row(a) = H_.row(i);
+        rows_.row(a) = gap_rate_row(i);
         cols_.row(a) = H_.row(i) + mu_[i] * G_.row(i);
         rate_[a] = hdot_[i];
       } else {
@@ -140,7 +142,8 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
     for (Index i = 0; i < D_; ++i)
       if (mu_[i] != Scalar(0)) e.f[i] = mu_[i] * e.N[i];
   }
-  if (!(isfinite(e.qdd.sum()) && isfinite(e.f.sum()) && isfinite(e.N.sum()))) e.finite = false;
+  if (!(isfinite(e.qdd.sum()) && isfinite(e.f.sum()) && isfinite(e.N.sum()) && isfinite(e.X.sum())))
+    e.finite = false;
 }
 
 template <class Scalar_, class Contact_>
@@ -148,7 +151,9 @@ bool ContactSystem<Scalar_, Contact_>::impulse(const Mode& mode, Scalar t, State
   // The constrained velocities (stuck sliding velocities, closed normal velocities: target 0;
   // landing normal velocities: target -e v_n, or 0 when that is below the velocity tolerance)
   // are set by the impulse along the rows that changes z' least in kinetic energy:
-  //   z' <- z' + M^-1 rows^T Lambda,   (rows M^-1 rows^T) Lambda = target - rows z'.
+  //   z' <- z' + M^-1 cols^T Lambda,   (rows M^-1 cols^T) Lambda = target - rows z',
+  // cols = rows (a normal impulse along the normal row, a stuck one along the sliding row)
+  // except under a moving side b, whose gap-rate row adds the slope's share of the sliding row.
   // The kinetic energy it removes is booked as friction dissipation.
   solve(mode, t, x);
   if (!e_.finite) return false;
@@ -157,17 +162,20 @@ bool ContactSystem<Scalar_, Contact_>::impulse(const Mode& mode, Scalar t, State
   for (Index i = 0; i < D_; ++i) {
     const std::size_t iu = static_cast<std::size_t>(i);
     if (landing_[iu]) {
-      rows_.row(U) = H_.row(i);
-      const Scalar bounce = -restitution_[i] * e_.vn[i];
+      rows_.row(U) = gap_rate_row(i);
+      cols_.row(U) = H_.row(i);
+      const Scalar bounce = -restitution_[i] * rows_.row(U).dot(x.segment(m_, m_));
       b_[U++] = bounce > options_.velocity_tolerance ? bounce : Scalar(0);
       continue;
     }
     if (unilateral(i) && is_in_contact(mode[i])) {
-      rows_.row(U) = H_.row(i);
+      rows_.row(U) = gap_rate_row(i);
+      cols_.row(U) = H_.row(i);
       b_[U++] = 0;
     }
     if (mode[i] == ContactState::Stick && has_stick_state(i)) {
       rows_.row(U) = G_.row(i);
+      cols_.row(U) = G_.row(i);
       b_[U++] = 0;
     }
   }
@@ -175,18 +183,17 @@ bool ContactSystem<Scalar_, Contact_>::impulse(const Mode& mode, Scalar t, State
   auto zd = x.segment(m_, m_);
   C_.setZero();
   Scalar scale = 0;
-  for (Index a = 0; a < U; ++a) {
+  for (Index a = 0; a < U; ++a) {  // C = rows M^-1 cols^T: symmetric unless a side b moves
     b_[a] -= rows_.row(a).dot(zd);
-    for (Index c = 0; c <= a; ++c)
-      C_(a, c) = C_(c, a) = rows_.row(a).dot(rows_.row(c).cwiseProduct(minv_.transpose()));
-    scale = std::max(scale, C_(a, a));
+    for (Index c = 0; c < U; ++c) C_(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
+    scale = std::max(scale, std::abs(C_(a, a)));
   }
   for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
   lu_.compute(C_);
   if (lu_.rank() < 2 * D_) return false;
   lambda_ = lu_.solve(b_);
   const Scalar before = Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
-  for (Index a = 0; a < U; ++a) zd += lambda_[a] * minv_.cwiseProduct(rows_.row(a).transpose());
+  for (Index a = 0; a < U; ++a) zd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
   if (options_.energy_audit) x[audit_offset() + 2] += before - Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
   return true;
 }

@@ -7,6 +7,7 @@
 /// (y, y', V, the gap and sliding accelerations of a damper in flight).
 
 #include "stickslip/model/friction_damped_system.hpp"
+#include "stickslip/model/detail/moving_contact.hpp"
 
 namespace stickslip {
 
@@ -91,7 +92,7 @@ inline void FrictionDampedSystem<Scalar_, Law_, Modes>::moving_damper(Index i, c
   if (options_.convective_terms) {
     const Scalar dw_qd = sd * (w.dw1 * Pqd[1] + w.dt1 * Pqd[2] + w.dw2 * Pqd[4] + w.dt2 * Pqd[5]);
     const Scalar ddw_q = sd * (w.ddw1 * wp1 + w.ddt1 * wp2 + w.ddw2 * wp4 + w.ddt2 * wp5);
-    h = Scalar(2) * dw_qd * V + ddw_q * V * V;
+    h = detail::convective_displacement_acceleration(dw_qd, ddw_q, V);
     dd = w.du * (Pqd[3] - Pqd[0]) * V;
   }
   e.slope[i] = slope;
@@ -217,7 +218,7 @@ auto FrictionDampedSystem<Scalar_, Law_, Modes>::flight_sliding_acceleration(con
   evaluate_shapes(i, e.X[i]);
   const auto& v = values_[iu];
   const auto qd = x.template segment<Modes>(n_, n_);
-  return e.xdd[i] - v.psi_u.dot(modal(e.qdd)) - v.dpsi_u.dot(qd) * e.V[i];
+  return e.xdd[i] - v.psi_u.dot(modal(e.qdd)) - detail::convective_velocity_rate(v.dpsi_u.dot(qd), e.V[i]);
 }
 
 }  // namespace stickslip
