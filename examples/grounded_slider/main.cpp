@@ -4,7 +4,9 @@
 // cores (SplitContinuation), between the linear curves of the free and the pinned slider.
 //
 // Usage: grounded_slider [--points-out FILE.csv] [--json FILE.json] [--parts n] [--range lo:hi]
-//   (range in units of the free cantilever's first frequency; default 0.8:2.2)
+//                        [--integrator exponential|dopri5]
+//   (range in units of the free cantilever's first frequency; default 0.8:2.2; the orbits' runs
+//   by the exact method on the slider's linear modes by default, or by Dormand-Prince)
 // Writes the curve (frequency, tip amplitude, stability, stick fraction) as CSV, a JSON summary
 // with the elapsed and CPU time, and prints one line per 10 points.
 
@@ -93,6 +95,7 @@ int main(int argc, char** argv) try {
   std::string csv = "grounded_slider_frc.csv", json = "grounded_slider_frc.json";
   unsigned parts = std::max(1u, std::thread::hardware_concurrency());
   double lo = 0.8, hi = 2.2;
+  OrbitIntegrator integrator = OrbitIntegrator::Exponential;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -101,6 +104,12 @@ int main(int argc, char** argv) try {
     };
     if (a == "--points-out") csv = next();
     else if (a == "--json") json = next();
+    else if (a == "--integrator") {
+      const std::string m = next();
+      if (m == "exponential") integrator = OrbitIntegrator::Exponential;
+      else if (m == "dopri5") integrator = OrbitIntegrator::DormandPrince54;
+      else throw std::invalid_argument("--integrator expects exponential or dopri5, got " + m);
+    }
     else if (a == "--parts") {
       const double p = number(next(), a);
       if (!(p >= 1 && p <= 64 && p == std::floor(p))) throw std::invalid_argument("--parts expects an integer in [1, 64]");
@@ -114,7 +123,8 @@ int main(int argc, char** argv) try {
       hi = number(r.substr(colon + 1), a);
       if (!(lo > 0 && hi > lo)) throw std::invalid_argument("--range expects 0 < lo < hi, got " + r);
     } else if (a == "--help") {
-      std::printf("grounded_slider [--points-out FILE.csv] [--json FILE.json] [--parts n] [--range lo:hi]\n");
+      std::printf("grounded_slider [--points-out FILE.csv] [--json FILE.json] [--parts n] [--range lo:hi] "
+                  "[--integrator exponential|dopri5]\n");
       return 0;
     } else {
       throw std::invalid_argument("unknown option " + a);
@@ -128,6 +138,7 @@ int main(int argc, char** argv) try {
   for (System& s : systems) ptrs.push_back(&s);
 
   ShootingOptions<double> so;
+  so.integrator = integrator;
   ContinuationOptions<double> co;
   co.parameter_min = lo;
   co.parameter_max = hi;
@@ -155,6 +166,7 @@ int main(int argc, char** argv) try {
     auto mode = sys.requested_mode();
     sys.make_consistent(mode, 0.0, x);
     RunOptions<double> run;
+    run.integrator = integrator == OrbitIntegrator::Exponential ? Integrator::Exponential : Integrator::DormandPrince54;
     run.stepper.rtol = 1e-9;
     run.stepper.atol = 1e-12;
     const double T = period(p);
@@ -192,6 +204,7 @@ int main(int argc, char** argv) try {
     } range;
     range.row = &tip_row;
     RunOptions<double> run;
+    run.integrator = integrator == OrbitIntegrator::Exponential ? Integrator::Exponential : Integrator::DormandPrince54;
     run.stepper.rtol = 1e-10;
     run.stepper.atol = 1e-13;
     run.stepper.output_interval = pt.orbit.period / 400;
@@ -206,9 +219,10 @@ int main(int argc, char** argv) try {
   std::FILE* j = std::fopen(json.c_str(), "w");
   if (!j) throw std::runtime_error("cannot write " + json);
   std::fprintf(j,
-               "{\n  \"points\": %zu,\n  \"completed\": %s,\n  \"status\": \"%s\",\n  \"parts\": %u,\n"
+               "{\n  \"points\": %zu,\n  \"completed\": %s,\n  \"status\": \"%s\",\n  \"integrator\": \"%s\",\n  \"parts\": %u,\n"
                "  \"elapsed_s\": %.3f,\n  \"cpu_s\": %.3f,\n  \"range_hz\": [%.6g, %.6g]\n}\n",
-               pts.size(), result.completed() ? "true" : "false", to_string(result.branch.status), parts, elapsed, cpu,
+               pts.size(), result.completed() ? "true" : "false", to_string(result.branch.status), to_string(integrator),
+               parts, elapsed, cpu,
                lo * w1 / (2 * kPi), hi * w1 / (2 * kPi));
   std::fclose(j);
   if (!result.completed()) std::printf("grounded_slider: %s\n", result.branch.message.c_str());
@@ -216,8 +230,9 @@ int main(int argc, char** argv) try {
     if (!result.dropped[k].points.empty())
       std::printf("grounded_slider: part %zu ran alone (%zu points): %s\n", k, result.dropped[k].points.size(),
                   result.dropped[k].message.c_str());
-  std::printf("grounded_slider: %zu points over %.1f-%.1f Hz (%s) in %.2f s elapsed, %.2f s CPU, %u parts; %s, %s\n",
+  std::printf("grounded_slider: %zu points over %.1f-%.1f Hz (%s) in %.2f s elapsed, %.2f s CPU, %u parts, %s; %s, %s\n",
               pts.size(), lo * w1 / (2 * kPi), hi * w1 / (2 * kPi), to_string(result.branch.status), elapsed, cpu, parts,
+              to_string(integrator),
               csv.c_str(), json.c_str());
   return result.completed() ? 0 : 1;
 } catch (const std::exception& e) {

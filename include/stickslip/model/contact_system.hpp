@@ -28,6 +28,7 @@
 #include <stickslip/modal/modal_basis.hpp>
 #include <stickslip/model/contact_concept.hpp>
 #include <stickslip/model/damper_states.hpp>
+#include <stickslip/model/detail/contact_linear_workspace.hpp>
 #include <stickslip/model/detail/contact_machine.hpp>
 #include <stickslip/model/detail/moving_contact.hpp>
 #include <stickslip/model/any_contact.hpp>
@@ -38,6 +39,7 @@
 #include <stickslip/model/wedge_damper.hpp>
 #include <stickslip/moving_load/member_shapes.hpp>
 #include <stickslip/ode/hybrid_system.hpp>
+#include <stickslip/ode/linear_part.hpp>
 
 #include <Eigen/Core>
 #include <Eigen/LU>
@@ -223,6 +225,20 @@ class ContactSystem {
   /// springs along x and y (simulate()'s RK4 stability check).
   std::vector<std::complex<Scalar>> linear_rates() const;
 
+  /// The linear part of `mode` for the exponential method (stickslip/ode/linear_part.hpp):
+  /// x_L = (z, z') (the audit integrals are quadratures), A_m = [0 I; Q K, Q D] with K, D the
+  /// stiffness and damping of the known forces and Q = M^-1 (I + B^T L) the map of the coupled
+  /// solve (L = -C^-1 G M^-1: the unknowns' response), b_m the loads and the slipping
+  /// contacts' friction forces through Q. Exact (exact_mode) with affine guards where every
+  /// contact is stuck or slipping under Coulomb friction at a PointContact with a constant
+  /// normal force, without bodies and time-function loads; elsewhere the rows, rotations and
+  /// friction forces are frozen at (t, x) and b0 is corrected so that the remainder vanishes at
+  /// x. Returns false when the solve at (t, x) fails. Allocates nothing once `lp` has its sizes
+  /// for the mode. \throws std::invalid_argument for a state or mode of the wrong size.
+  bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
+  /// True when linear_part is exact in `mode` (see linear_part).
+  bool exact_mode(const Mode& mode) const;
+
   /// The switches logged since construction or clear_events().
   const std::vector<ContactEvent>& events() const noexcept { return events_; }
   /// Forgets the logged switches.
@@ -293,8 +309,10 @@ class ContactSystem {
   mutable Vector b_, lambda_;
   mutable Eigen::FullPivLU<Matrix> lu_;
   mutable std::vector<Index> unknown_;    // contact of each unknown; + D_ for a normal force
+  detail::ContactLinearWorkspace<Scalar> lin_;  // linear_part's matrices (contact_system_linear.hpp)
 };
 
 }  // namespace stickslip
 
 #include <stickslip/model/detail/contact_system_impl.hpp>
+#include <stickslip/model/detail/contact_system_linear.hpp>

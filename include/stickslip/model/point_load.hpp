@@ -8,10 +8,12 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 namespace stickslip {
 
@@ -87,5 +89,18 @@ auto load_direction_row(const Values& v, Scalar c, Scalar s, LoadDirection direc
   }
   detail::throw_invalid("PointLoad", "direction must be a LoadDirection enumerator", static_cast<int>(direction));
 }
+
+namespace detail {
+/// The distinct |omega| of the harmonic loads without a time function, appended to `omega` in
+/// order of first appearance (the frequencies of a linear part's b_m(t), linear_part.hpp).
+template <class Scalar>
+void add_load_frequencies(const std::vector<PointLoad<Scalar>>& loads, std::vector<Scalar>& omega) {
+  using std::abs;
+  for (const PointLoad<Scalar>& l : loads)
+    if (!l.time_function && l.omega != Scalar(0) &&
+        std::find(omega.begin(), omega.end(), abs(l.omega)) == omega.end())
+      omega.push_back(abs(l.omega));
+}
+}  // namespace detail
 
 }  // namespace stickslip

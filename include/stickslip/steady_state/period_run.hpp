@@ -5,6 +5,7 @@
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/ode/dormand_prince54.hpp>
+#include <stickslip/ode/exact_linear_stepper.hpp>
 #include <stickslip/ode/hybrid_stepper.hpp>
 #include <stickslip/steady_state/orbit_signal.hpp>
 #include <stickslip/steady_state/shooting_options.hpp>
@@ -99,12 +100,15 @@ struct OrbitObserver {
 }  // namespace detail
 
 /// Integrate `system` over one period [t0, t0 + T] from (mode, x0) with
-/// HybridStepper<., DormandPrince54> and options.stepper (samples every T /
+/// HybridStepper<., DormandPrince54> (or ExactLinearStepper: options.integrator) and
+/// options.stepper (samples every T /
 /// options.samples_per_period for the amplitudes and the outputs of options.outputs, from this
 /// run itself: with the monodromy, the variational run's own state). With `monodromy`, also M = dx(t0 + T)/dx(t0):
 /// options.monodromy == Variational integrates VariationalSystem<System> (one run);
 /// FiniteDifference re-shoots 2 n perturbed orbits (column j = (x(T; x0 + h e_j) -
-/// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)). options.interrupt is asked
+/// x(T; x0 - h e_j)) / 2h, h = options.fd_step max(1, |x0_j|)), as the exponential runs always
+/// do (options.integrator Exponential throws std::invalid_argument for a system without
+/// linear_part). options.interrupt is asked
 /// after every step of these runs (true: the run stops, `interrupted`). The numerical outcome is in
 /// the result's status; throws std::invalid_argument for non-finite or empty x0, non-finite t0,
 /// T <= 0 or invalid options.
@@ -143,6 +147,56 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
   if (options.samples_per_period > 0) so.output_interval = T / Scalar(options.samples_per_period);
   orbit_obs.track(x0);
 
+  // Column j of the monodromy = (x(T; x0 + h e_j) - x(T; x0 - h e_j)) / 2h by `fd_stepper`'s
+  // runs (no samples: only the end states).
+  auto difference_monodromy = [&](auto& fd_stepper) {
+    run.monodromy.resize(n, n);
+    typename System::State xp = x0;
+    NullObserver none;
+    detail::InterruptibleObserver<NullObserver> fd_obs{none, options.interrupt};
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const Scalar h = options.fd_step * std::max(Scalar(1), std::abs(x0[j]));
+      xp[j] = x0[j] + h;
+      const auto rp = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
+      xp[j] = x0[j] - h;
+      const auto rm = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
+      xp[j] = x0[j];
+      if (!rp.ok() || !rm.ok()) {
+        const auto& bad = rp.ok() ? rm : rp;
+        run.status = bad.status;
+        run.interrupted = fd_obs.interrupted;
+        run.message = "finite-difference monodromy, column " + std::to_string(j) + ": " +
+                      (fd_obs.interrupted ? detail::interrupted_message(bad.t) : bad.message);
+        return;
+      }
+      run.monodromy.col(j) = (rp.x - rm.x) / (Scalar(2) * h);
+    }
+  };
+  StepperOptions<Scalar> plain = options.stepper;  // no samples: only the end state
+  // The run from x0 by `stepper` (samples, amplitudes and events through obs); true when it
+  // succeeded.
+  auto nominal = [&](auto& stepper) {
+    const auto r = stepper.integrate(mode, t0, x0, t0 + T, obs);
+    finish(r);
+    run.x_end = r.x;
+    run.mode_end = r.mode;
+    run.stats = r.stats;
+    return r.ok();
+  };
+
+  if (options.integrator == OrbitIntegrator::Exponential) {
+    if constexpr (has_linear_part_v<System>) {
+      ExactLinearStepper<System> stepper(system, so);
+      if (!nominal(stepper) || !monodromy) return run;
+      ExactLinearStepper<System> fd_stepper(system, plain);  // its mode cache serves all 2n runs
+      difference_monodromy(fd_stepper);
+      return run;
+    } else {
+      detail::throw_invalid(where, "options.integrator Exponential needs a system with linear_part",
+                            std::string(to_string(options.integrator)));
+    }
+  }
+
   if (monodromy && options.monodromy == MonodromyMethod::Variational) {
     VariationalSystem<System> var(system, n, options.fd_step, options.control_sensitivities);
     HybridStepper<VariationalSystem<System>, DormandPrince54> stepper(var, so);
@@ -156,36 +210,9 @@ PeriodRun<System> run_period(System& system, const typename System::Mode& mode,
     return run;
   }
   HybridStepper<System, DormandPrince54> stepper(system, so);
-  const auto r = stepper.integrate(mode, t0, x0, t0 + T, obs);
-  finish(r);
-  run.x_end = r.x;
-  run.mode_end = r.mode;
-  run.stats = r.stats;
-  if (!monodromy || !r.ok()) return run;
-
-  StepperOptions<Scalar> plain = options.stepper;  // no samples: only the end state
+  if (!nominal(stepper) || !monodromy) return run;
   HybridStepper<System, DormandPrince54> fd_stepper(system, plain);
-  run.monodromy.resize(n, n);
-  typename System::State xp = x0;
-  NullObserver none;
-  detail::InterruptibleObserver<NullObserver> fd_obs{none, options.interrupt};
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Scalar h = options.fd_step * std::max(Scalar(1), std::abs(x0[j]));
-    xp[j] = x0[j] + h;
-    const auto rp = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
-    xp[j] = x0[j] - h;
-    const auto rm = fd_stepper.integrate(mode, t0, xp, t0 + T, fd_obs);
-    xp[j] = x0[j];
-    if (!rp.ok() || !rm.ok()) {
-      const auto& bad = rp.ok() ? rm : rp;
-      run.status = bad.status;
-      run.interrupted = fd_obs.interrupted;
-      run.message = "finite-difference monodromy, column " + std::to_string(j) + ": " +
-                    (fd_obs.interrupted ? detail::interrupted_message(bad.t) : bad.message);
-      return run;
-    }
-    run.monodromy.col(j) = (rp.x - rm.x) / (Scalar(2) * h);
-  }
+  difference_monodromy(fd_stepper);
   return run;
 }
 

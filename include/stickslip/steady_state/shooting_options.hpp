@@ -54,12 +54,31 @@ inline const char* to_string(MonodromyMethod m) noexcept {
   return m == MonodromyMethod::FiniteDifference ? "finite_difference" : "variational";
 }
 
+/// Integrator of the orbit runs (run_period, hence Shooting and Continuation).
+enum class OrbitIntegrator : std::uint8_t {
+  /// HybridStepper with DormandPrince54 (any hybrid system).
+  DormandPrince54,
+  /// ExactLinearStepper (systems with linear_part, stickslip/ode/linear_part.hpp): exact
+  /// propagation in linear modes, whatever their fastest mode; the monodromy is then always by
+  /// central differences of exact runs (MonodromyMethod::FiniteDifference).
+  Exponential
+};
+
+/// Human-readable name of an orbit integrator.
+inline const char* to_string(OrbitIntegrator i) noexcept {
+  return i == OrbitIntegrator::Exponential ? "exponential" : "dopri5";
+}
+
 /// Options of Shooting and Continuation. Tolerances are on the components declared periodic.
 template <class Scalar>
 struct ShootingOptions {
-  /// Options of the runs (HybridStepper with DormandPrince54). Tight by default: the Newton
-  /// residual cannot be smaller than the integration error.
+  /// Options of the runs (HybridStepper with DormandPrince54, or ExactLinearStepper: see
+  /// `integrator`). Tight by default: the Newton residual cannot be smaller than the
+  /// integration error.
   StepperOptions<Scalar> stepper = tight_stepper();
+  /// Integrator of the runs. Exponential needs a system with linear_part and ignores
+  /// `monodromy` and `control_sensitivities` (finite differences of exact runs).
+  OrbitIntegrator integrator = OrbitIntegrator::DormandPrince54;
   /// Indices of the state components that must repeat after a period (x_i(T) = x_i(0)); empty:
   /// all. The others (e.g. energy quadratures) keep their initial values and are not solved for.
   std::vector<Eigen::Index> periodic;
@@ -118,6 +137,9 @@ struct ShootingOptions {
   /// state size n.
   void validate(const std::string& where, Eigen::Index n) const {
     stepper.validate(where);
+    if (integrator != OrbitIntegrator::DormandPrince54 && integrator != OrbitIntegrator::Exponential)
+      detail::throw_invalid(where, "options.integrator must be an OrbitIntegrator enumerator",
+                            static_cast<int>(integrator));
     detail::require_positive(where, "options.tolerance", tolerance);
     if (max_iterations <= 0)
       detail::throw_invalid(where, "options.max_iterations must be > 0", max_iterations);

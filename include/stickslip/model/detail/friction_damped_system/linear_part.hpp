@@ -112,10 +112,7 @@ inline void FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part_by_probes(
   for (Index i = 0; i < D_; ++i) end_guards = end_guards || end_guards_of(mode, i);
   const Index G = (exact && !end_guards) || (!exact && frozen_guards) ? num_guards(mode) : 0;
   lp.omega.clear();
-  for (const Load& l : loads_)
-    if (!l.time_function && l.omega != Scalar(0) &&
-        std::find(lp.omega.begin(), lp.omega.end(), abs(l.omega)) == lp.omega.end())
-      lp.omega.push_back(abs(l.omega));
+  detail::add_load_frequencies(loads_, lp.omega);
   const Index K = static_cast<Index>(lp.omega.size());
   // The audit's rates as quadratic forms in z = (x_L, 1, cos w_k t, sin w_k t) (exact modes):
   // the friction forces f and slip velocities V are affine in z, recorded at every probe.
