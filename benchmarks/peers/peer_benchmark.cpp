@@ -4,7 +4,8 @@
 // tolerance setting that reaches the target with the reference's event sequence, times it (median
 // of repeats, CPU time) and writes peers.csv, peers.json and peers.md to --out.
 //
-//   peer_benchmark [--out DIR] [--repeats R] [--min-seconds S]
+//   peer_benchmark [--out DIR] [--repeats R] [--min-seconds S] [--only NAME,NAME...]
+//   (--only: the implementations of implementations() to run, by name; default all)
 
 #include <stickslip/ode.hpp>
 
@@ -179,6 +180,7 @@ struct Row {
   bool reached = false;
   double cpu_seconds = std::numeric_limits<double>::quiet_NaN();
   long rhs_evaluations = 0, steps = 0, events = 0;
+  long event_state_rhs = -1, restart_rhs = -1;  // RunOutcome's (library HybridStepper only)
   double final_error = std::numeric_limits<double>::quiet_NaN();
   double event_time_error = std::numeric_limits<double>::quiet_NaN();
   double ratio_odeint = std::numeric_limits<double>::quiet_NaN();
@@ -261,6 +263,8 @@ Row measure(const Implementation& impl, const ChainParameters& p, const Referenc
   row.rhs_evaluations = o.rhs_evaluations;
   row.steps = o.steps;
   row.events = static_cast<long>(o.events.size());
+  row.event_state_rhs = o.event_state_rhs;
+  row.restart_rhs = o.restart_rhs;
   row.final_error = checks[chosen].final_error;
   row.event_time_error = checks[chosen].event_time_error;
   row.cpu_seconds = time_run(impl, p, row.setting, repeats, min_seconds);
@@ -385,6 +389,7 @@ int run_main(int argc, char** argv) {
   std::string out = "build/peers-out";
   int repeats = 5;
   double min_seconds = 0.02;
+  std::string only;  // comma-separated implementation names; empty: all
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--out" && i + 1 < argc) {
@@ -393,15 +398,22 @@ int run_main(int argc, char** argv) {
       repeats = std::stoi(argv[++i]);
     } else if (a == "--min-seconds" && i + 1 < argc) {
       min_seconds = std::stod(argv[++i]);
+    } else if (a == "--only" && i + 1 < argc) {
+      only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: peer_benchmark [--out DIR] [--repeats R] [--min-seconds S]\n");
+      std::fprintf(stderr, "usage: peer_benchmark [--out DIR] [--repeats R] [--min-seconds S] "
+                           "[--only NAME,NAME...]\n");
       return 2;
     }
   }
   if (repeats < 1) throw std::invalid_argument("peer_benchmark: --repeats must be >= 1");
   const std::string when = utc_now(), machine = machine_description();
   const auto problems = make_problems();
-  const auto impls = implementations();
+  std::vector<Implementation> impls;
+  for (const auto& impl : implementations())
+    if (only.empty() || ("," + only + ",").find("," + std::string(impl.name) + ",") != std::string::npos)
+      impls.push_back(impl);
+  if (impls.empty()) throw std::invalid_argument("peer_benchmark: --only names no implementation");
   std::vector<Row> rows;
   std::vector<Validation> validations;
   for (const auto& p : problems) {
@@ -424,6 +436,9 @@ int run_main(int argc, char** argv) {
                     r.implementation.c_str(), target, r.reached ? "reached" : "NOT reached",
                     r.setting, 1e3 * r.cpu_seconds, r.rhs_evaluations, r.final_error,
                     r.note.c_str());
+        if (r.reached && r.event_state_rhs >= 0)
+          std::printf("    %ld steps, %ld events: %ld RHS for event states, %ld for restarts\n",
+                      r.steps, r.events, r.event_state_rhs, r.restart_rhs);
         std::fflush(stdout);
       }
       auto family_time = [&](const char* fam) {

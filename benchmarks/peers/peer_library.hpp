@@ -154,6 +154,8 @@ RunOutcome run_library_n(const ChainParameters& p, double tolerance) {
   out.final_state = r.x;
   out.steps = r.stats.accepted_steps + r.stats.rejected_steps;
   out.rhs_evaluations = r.stats.rhs_evaluations;
+  out.event_state_rhs = r.stats.event_state_rhs_evaluations;
+  out.restart_rhs = r.stats.restart_rhs_evaluations;
   return out;
 }
 

@@ -18,6 +18,9 @@ struct RunOutcome {
   std::vector<Event> events;
   long steps = 0;               // step attempts (accepted + rejected)
   long rhs_evaluations = 0;
+  // The library's HybridStepper only (StepperStats), -1 elsewhere: of rhs_evaluations, those
+  // spent on the state at events and on restarting after them.
+  long event_state_rhs = -1, restart_rhs = -1;
 };
 
 /// One implementation: a name and a function integrating a problem at rtol = atol = tolerance.

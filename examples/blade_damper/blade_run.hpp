@@ -73,6 +73,8 @@ struct RunRecord {
   double energy_scale = 0;             ///< largest |term| of the audit, for a relative measure [J]
   std::vector<stickslip::FrictionDampedSystem<double>::ContactEvent> events;  ///< in the window
   long total_events = 0;
+  std::string method;         ///< the integrator that ran (RunOptions::integrator, or Auto's choice)
+  std::string method_reason;  ///< why (Integrator::Auto's rule)
 };
 
 namespace detail {
@@ -159,6 +161,8 @@ inline RunRecord run_scene(BladeScene& scene, const RunSettings& settings) {
   rec.message = result.message;
   rec.t_end = result.t;
   rec.stats = result.stats;
+  rec.method = result.method;
+  rec.method_reason = result.method_reason;
   if (sys.options().energy_audit) {
     auto b = sys.energy_balance(result.mode, result.t, result.x, E0);
     rec.energy_residual = b.residual;

@@ -79,7 +79,8 @@ Usage: blade_damper [options]
   --damping z            modal damping ratio of every mode (default 0)
   --mu-s m --mu-k m      static and kinetic friction coefficients (default 0.35, 0.3;
                          mu_s >= mu_k)
-  --integrator name      rk4 | dopri5 | rosenbrock23 | exponential (default dopri5)
+  --integrator name      auto | rk4 | dopri5 | rosenbrock23 | exponential (default auto: chosen
+                         per run from the scene, the choice and its reason printed)
   --rtol r --atol a      tolerances of the adaptive integrators (default 1e-7, 1e-10)
   --dt h                 RK4 step [s] (default 1e-4, the paper's)
   --events name          root | bisection (event location; default root)
@@ -370,6 +371,7 @@ void print_run(const blade::RunRecord& r, const Frequencies& fr) {
               num(r.regime[1].transitions_per_period, "%.2f").c_str(), r.total_events, r.cpu_seconds,
               fr.frame.empty() ? 0.0 : fr.frame[0], fr.stuck.empty() ? 0.0 : fr.stuck[0],
               r.status == Status::Success ? "" : " - ", r.status == Status::Success ? "" : r.message.c_str());
+  std::printf("           integrator %s: %s\n", r.method.c_str(), r.method_reason.c_str());
 }
 
 /// The scene's parameters at this preload.

@@ -1220,7 +1220,9 @@ void bind_simulate(py::module_& m) {
       .value("DormandPrince54", Integrator::DormandPrince54, "\"dopri5\": adaptive explicit 5(4) with dense output")
       .value("Rosenbrock23", Integrator::Rosenbrock23, "\"rosenbrock23\": adaptive linearly implicit, stiffly stable")
       .value("Exponential", Integrator::Exponential,
-             "\"exponential\": exact exponential where the mode is linear, Lawson Dormand-Prince elsewhere");
+             "\"exponential\": exact exponential where the mode is linear, Lawson Dormand-Prince elsewhere")
+      .value("Auto", Integrator::Auto,
+             "\"auto\": chosen per run from the system (choose_integrator; docs/howto/pick_an_integrator.md)");
   py::enum_<EventLocation>(m, "EventLocation", "How a guard crossing is located in time.")
       .value("DenseRootFinding", EventLocation::DenseRootFinding,
              "Illinois root finding on the method's dense output (default)")
@@ -1228,7 +1230,9 @@ void bind_simulate(py::module_& m) {
   py::enum_<EventState>(m, "EventState", "Which state an event hands to the transition (docs/ode.md).")
       .value("DenseOutput", EventState::DenseOutput, "the dense output at the located time")
       .value("Reintegrate", EventState::Reintegrate,
-             "one step of the method from the step start to the event (default)");
+             "one step of the method from the step start to the event, its root refined on it")
+      .value("Checked", EventState::Checked,
+             "the dense output where one re-taken step says its error is within the tolerances (default)");
   py::enum_<Status>(m, "Status", "How a run ended (Run.status).")
       .value("Success", Status::Success, "reached t_end")
       .value("StepSizeUnderflow", Status::StepSizeUnderflow, "the step fell below min_step")
@@ -1267,7 +1271,7 @@ void bind_simulate(py::module_& m) {
   stepper_field("max_step", &Stepper::max_step, "largest step of adaptive methods [s] (default inf)");
   stepper_field("max_steps", &Stepper::max_steps, "budget of step attempts, accepted + rejected (default 1e8)");
   stepper_field("event_location", &Stepper::event_location, "EventLocation (default DenseRootFinding)");
-  stepper_field("event_state", &Stepper::event_state, "EventState at a root-found event (default Reintegrate)");
+  stepper_field("event_state", &Stepper::event_state, "EventState at a root-found event (default Checked)");
   stepper_field("event_time_tolerance", &Stepper::event_time_tolerance,
                 "width of the final bracket of an event time [s] (default 1e-12)");
   stepper_field("guard_zero_tolerance", &Stepper::guard_zero_tolerance,
@@ -2088,6 +2092,8 @@ void bind_steady_state(py::module_& m) {
 
 }  // namespace
 
+void bind_auto(py::module_& m);  // auto_bindings.cpp
+
 PYBIND11_MODULE(stickslip, m) {
   m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
   m.attr("__version__") = STICKSLIP_VERSION_STRING;
@@ -2099,4 +2105,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_simulate(m);
   bind_trade_study(m);
   bind_steady_state(m);
+  bind_auto(m);
 }

@@ -154,9 +154,9 @@ TEST(ModelInputs, EnumValuesThatAreNoEnumeratorsAreRefusedNamingTheParameter) {
   DamperStates walls(2);
   expect_invalid_argument([&] { walls.set_wall(0, static_cast<WallRest>(3)); }, {"set_wall", "WallRest", "3"});
   RunOptions<double> run;
-  run.integrator = static_cast<Integrator>(4);
+  run.integrator = static_cast<Integrator>(5);  // (4 is Integrator::Auto)
   expect_invalid_argument([&] { simulate(sys, sys.requested_mode(), 0.0, x0, 1e-3, run); },
-                          {"simulate", "options.integrator", "Integrator", "4"});
+                          {"simulate", "options.integrator", "Integrator", "5"});
 }
 
 // A run's inputs are checked before the first evaluation and named: a NaN t0 was reported as an

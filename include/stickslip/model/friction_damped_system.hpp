@@ -327,6 +327,9 @@ class FrictionDampedSystem {
   /// the evaluation at (t, x) is not finite. Allocates nothing once lp has the sizes of the mode
   /// (after the system's first call). Throws std::invalid_argument on a wrong size of x or mode.
   bool linear_part(const Mode& mode, Scalar t, const State& x, LinearPart<Scalar>& lp);
+  /// True when linear_part is exact in every mode (no time_function load, every contact fixed
+  /// and every law a CoulombLaw): Integrator::Auto's test for the exponential method.
+  bool every_mode_exact() const;
 
   // ---- Jacobian df/dx (the variational equations of shooting; has_jacobian_v) -------
   /// J = df/dx of rhs() in mode `mode` at (t, x), state_size() x state_size(). Where the mode is

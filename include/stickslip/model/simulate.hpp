@@ -4,10 +4,12 @@
 
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/model/detail/enum_checks.hpp"
+#include "stickslip/model/integrator.hpp"
 #include "stickslip/ode.hpp"
 #include "stickslip/ode/exact_linear_stepper.hpp"
 #include "stickslip/ode/observer_ref.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <cstdint>
@@ -19,51 +21,25 @@
 
 namespace stickslip {
 
-/// Integrators of component 5, selectable at run time.
-enum class Integrator : std::uint8_t {
-  RungeKutta4,      ///< fixed step StepperOptions::fixed_step (the paper's method)
-  DormandPrince54,  ///< adaptive explicit 5(4) with dense output
-  Rosenbrock23,     ///< adaptive linearly implicit, stiffly stable
-  /// ExactLinearStepper: exp(A_m delta) where the mode is linear (LinearPart::exact), Lawson
-  /// Dormand-Prince 5(4) with StepperOptions::rtol/atol where it is not; needs a system with
-  /// linear_part (has_linear_part_v). Grid: ExactLinearStepper::samples_per_period per shortest
-  /// period, at most StepperOptions::max_step.
-  Exponential
-};
-
-/// "rk4", "dopri5", "rosenbrock23".
-inline const char* to_string(Integrator i) noexcept {
-  switch (i) {
-    case Integrator::RungeKutta4: return "rk4";
-    case Integrator::DormandPrince54: return "dopri5";
-    case Integrator::Rosenbrock23: return "rosenbrock23";
-    case Integrator::Exponential: return "exponential";
-  }
-  return "unknown";
-}
-
-/// Parses "rk4" | "dopri5" | "rosenbrock23" | "exponential" (also "exact");
-/// throws std::invalid_argument otherwise.
-inline Integrator parse_integrator(const std::string& name) {
-  if (name == "rk4") return Integrator::RungeKutta4;
-  if (name == "dopri5" || name == "dopri") return Integrator::DormandPrince54;
-  if (name == "rosenbrock23" || name == "rosenbrock" || name == "stiff") return Integrator::Rosenbrock23;
-  if (name == "exponential" || name == "exact") return Integrator::Exponential;
-  detail::throw_invalid("parse_integrator",
-                        "integrator must be rk4, dopri5, rosenbrock23 or exponential", name);
-}
-
 /// Integrator and stepper options of one run.
 template <class Scalar>
 struct RunOptions {
-  /// Integrator of the run (default DormandPrince54; RungeKutta4 steps by stepper.fixed_step).
-  Integrator integrator = Integrator::DormandPrince54;
+  /// Integrator of the run (default Auto: chosen per run by choose_integrator, the choice and
+  /// its reason reported in the result; RungeKutta4 steps by stepper.fixed_step).
+  Integrator integrator = Integrator::Auto;
   /// Tolerances, step sizes, output interval and Zeno limits (stickslip/ode/stepper_options.hpp).
   StepperOptions<Scalar> stepper{};
   /// With RungeKutta4: refuse (std::invalid_argument) a fixed step above RK4's stability limit
   /// for the system's rates, when the system reports them (step_rates(), else linear_rates());
   /// the message names the binding rate. Switch off only to study what an unstable step does.
   bool check_stability_limit = true;
+  /// Repeat the run at rtol / 10 and atol / 10 (RungeKutta4: fixed_step / 10) on a copy of the
+  /// system, without observer, and report in the result's sequence_check whether the two
+  /// sequences of switches agree and the time of the first that differs. Costs the tighter run:
+  /// 1.6x (Dormand-Prince, steps ~ tol^(-1/5)) to 2.2x (Rosenbrock23, tol^(-1/3)) the run's
+  /// steps, 10x with RungeKutta4, ~1x with the exponential method on exact modes, plus a copy
+  /// of the system and a record of both runs' switches.
+  bool check_event_sequence = false;
 };
 
 namespace detail {
@@ -95,19 +71,6 @@ template <class System, class = void>
 struct has_load_fault : std::false_type {};
 template <class System>
 struct has_load_fault<System, std::void_t<decltype(std::declval<const System&>().load_fault().count)>>
-    : std::true_type {};
-
-template <class System, class = void>
-struct has_linear_rates : std::false_type {};
-template <class System>
-struct has_linear_rates<System, std::void_t<decltype(std::declval<const System&>().linear_rates())>>
-    : std::true_type {};
-
-/// Detects step_rates() (rates with names, StepRate), preferred to linear_rates().
-template <class System, class = void>
-struct has_step_rates : std::false_type {};
-template <class System>
-struct has_step_rates<System, std::void_t<decltype(std::declval<const System&>().step_rates())>>
     : std::true_type {};
 
 /// |R(z)| of the classical Runge-Kutta method, R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24: one step
@@ -150,20 +113,6 @@ void require_rk4_stable(const std::vector<StepRate<Scalar>>& rates, Scalar h) {
                     "high modes, a wider regularisation or an adaptive method, or set "
                     "RunOptions::check_stability_limit = false",
                 h);
-}
-
-/// The system's rates for the RK4 check: step_rates() when it has them, else linear_rates()
-/// named "linear rate k".
-template <class System>
-std::vector<StepRate<typename System::Scalar>> named_step_rates(const System& system) {
-  if constexpr (has_step_rates<System>::value) {
-    return system.step_rates();
-  } else {
-    std::vector<StepRate<typename System::Scalar>> rates;
-    for (const auto& lambda : system.linear_rates())
-      rates.push_back({lambda, "linear rate " + std::to_string(rates.size())});
-    return rates;
-  }
 }
 
 }  // namespace detail
@@ -218,6 +167,110 @@ SimulationResult<System> simulate_method(System& system, typename System::Mode m
                                          const RunOptions<typename System::Scalar>& options,
                                          SimulationObserver<System> observer);
 
+/// True when modes compare with == (the event-sequence check compares them).
+template <class Mode, class = void>
+struct has_mode_equality : std::false_type {};
+template <class Mode>
+struct has_mode_equality<Mode, std::void_t<decltype(bool(std::declval<const Mode&>() == std::declval<const Mode&>()))>>
+    : std::true_type {};
+
+/// Records a run's switches (times, from- and to-modes), forwarding every call to `forward`
+/// (none when null).
+template <class System>
+struct SwitchRecorder {
+  using Scalar = typename System::Scalar;
+  using State = typename System::State;
+  using Mode = typename System::Mode;
+  const SimulationObserver<System>* forward = nullptr;
+  std::vector<Scalar> times;
+  std::vector<std::pair<Mode, Mode>> switches;
+  bool on_step(Scalar t, const State& x, const Mode& m) {
+    return forward == nullptr || forward->on_step(t, x, m);
+  }
+  void on_event(const EventRecord<Scalar, Mode>& record, const State& x_after) {
+    times.push_back(record.t);
+    switches.emplace_back(record.from, record.to);
+    if (forward != nullptr) forward->on_event(record, x_after);
+  }
+  bool on_sample(Scalar t, const State& x, const Mode& m) {
+    return forward == nullptr || forward->on_sample(t, x, m);
+  }
+};
+
+/// The check of a run's switches `a` against those of the tighter run `b` (EventSequenceCheck).
+template <class System>
+EventSequenceCheck<typename System::Scalar> compare_switches(const SwitchRecorder<System>& a,
+                                                            const SwitchRecorder<System>& b) {
+  EventSequenceCheck<typename System::Scalar> c;
+  c.checked = true;
+  c.events = static_cast<long>(a.switches.size());
+  c.events_tight = static_cast<long>(b.switches.size());
+  const std::size_t common = std::min(a.switches.size(), b.switches.size());
+  for (std::size_t k = 0; k < common; ++k) {
+    if (a.switches[k].first == b.switches[k].first && a.switches[k].second == b.switches[k].second)
+      continue;
+    c.agree = false;
+    c.first_difference = std::min(a.times[k], b.times[k]);
+    return c;
+  }
+  if (a.switches.size() != b.switches.size()) {
+    c.agree = false;
+    c.first_difference = a.switches.size() > common ? a.times[common] : b.times[common];
+  }
+  return c;
+}
+
+/// simulate_method after Integrator::Auto is resolved (choose_integrator), with the
+/// event-sequence check when asked; names the method and the reason in the result.
+template <class System>
+SimulationResult<System> simulate_resolved(System& system, typename System::Mode mode,
+                                           typename System::Scalar t0,
+                                           const typename System::State& x0,
+                                           typename System::Scalar t_end,
+                                           const RunOptions<typename System::Scalar>& options,
+                                           SimulationObserver<System> observer) {
+  RunOptions<typename System::Scalar> run = options;
+  std::string reason = "options.integrator";
+  if (run.integrator == Integrator::Auto) {
+    IntegratorChoice choice = choose_integrator(system, mode, t0, x0, t_end, run.stepper.rtol);
+    run.integrator = choice.integrator;
+    reason = std::move(choice.reason);
+  }
+  SimulationResult<System> r;
+  if (!run.check_event_sequence) {
+    r = simulate_method(system, std::move(mode), t0, x0, t_end, run, observer);
+  } else if constexpr (std::is_copy_constructible_v<System> && has_mode_equality<typename System::Mode>::value) {
+    System tight_system = system;  // the tighter run starts from the system as the run does
+    SwitchRecorder<System> main_switches;
+    main_switches.forward = &observer;
+    r = simulate_method(system, mode, t0, x0, t_end, run, SimulationObserver<System>(main_switches));
+    RunOptions<typename System::Scalar> tight = run;
+    tight.check_event_sequence = false;
+    tight.stepper.rtol /= 10;
+    tight.stepper.atol /= 10;
+    if (run.integrator == Integrator::RungeKutta4) tight.stepper.fixed_step /= 10;
+    tight.stepper.output_interval = 0;
+    SwitchRecorder<System> tight_switches;
+    const SimulationResult<System> rt = simulate_method(tight_system, std::move(mode), t0, x0, t_end,
+                                                        tight, SimulationObserver<System>(tight_switches));
+    r.sequence_check = compare_switches(main_switches, tight_switches);
+    r.sequence_check.rtol_tight =
+        run.integrator == Integrator::RungeKutta4 ? tight.stepper.fixed_step : tight.stepper.rtol;
+    if (rt.status != r.status || rt.t != r.t) {  // the tighter run ended elsewhere: not converged
+      r.sequence_check.agree = false;
+      if (!(r.sequence_check.first_difference <= std::min(r.t, rt.t)))
+        r.sequence_check.first_difference = std::min(r.t, rt.t);
+    }
+  } else {
+    throw_invalid("simulate",
+                  "options.check_event_sequence needs a copy-constructible system whose modes compare with ==",
+                  std::string("check_event_sequence"));
+  }
+  r.method = to_string(run.integrator);
+  r.method_reason = std::move(reason);
+  return r;
+}
+
 /// simulate() after its observer became a SimulationObserver: checks (t0, t_end, the
 /// integrator, and the system's validate_start or validate_state), then the chosen method; a
 /// NonFiniteState status names a load whose value was not finite (load_fault()).
@@ -231,14 +284,14 @@ SimulationResult<System> simulate_dispatch(System& system, typename System::Mode
   require_finite("simulate", "t0", t0);
   require_finite("simulate", "t_end", t_end);
   if (!(t_end >= t0)) throw_invalid("simulate", "t_end must be >= t0", t_end);
-  require_enumerator("simulate", "options.integrator", "Integrator", options.integrator, Integrator::Exponential);
+  require_enumerator("simulate", "options.integrator", "Integrator", options.integrator, Integrator::Auto);
   if constexpr (has_validate_start<System>::value)
     system.validate_start(mode, t0, x0, "simulate");
   else if constexpr (has_validate_state<System>::value)
     system.validate_state(mode, x0, "simulate");
   if constexpr (has_load_fault<System>::value) {  // name a load whose value was not finite
     const long faults = system.load_fault().count;
-    SimulationResult<System> r = simulate_method(system, std::move(mode), t0, x0, t_end, options, observer);
+    SimulationResult<System> r = simulate_resolved(system, std::move(mode), t0, x0, t_end, options, observer);
     if (r.status == Status::NonFiniteState && system.load_fault().count != faults) {
       const auto& f = system.load_fault();
       r.message = "PointLoad[" + std::to_string(f.load) + "] is not finite at t = " + format_value(f.t) +
@@ -246,7 +299,7 @@ SimulationResult<System> simulate_dispatch(System& system, typename System::Mode
     }
     return r;
   } else {
-    return simulate_method(system, std::move(mode), t0, x0, t_end, options, observer);
+    return simulate_resolved(system, std::move(mode), t0, x0, t_end, options, observer);
   }
 }
 
@@ -270,7 +323,9 @@ SimulationResult<System> simulate_method(System& system, typename System::Mode m
                                                  options.stepper, observer);
     case Integrator::Exponential:
       return simulate_exponential(system, std::move(mode), t0, x0, t_end, options.stepper, observer);
-    case Integrator::DormandPrince54: break;
+    case Integrator::DormandPrince54:
+    case Integrator::Auto:  // (resolved before, by simulate_resolved)
+      break;
   }
   return simulate_with<System, DormandPrince54>(system, std::move(mode), t0, x0, t_end,
                                                 options.stepper, observer);
@@ -287,7 +342,10 @@ SimulationResult<System> simulate_method(System& system, typename System::Mode m
 /// step (see RunOptions::check_stability_limit). A system with a validate_state(mode, x, where) hook
 /// (FrictionDampedSystem) checks the sizes of x0 and mode first (std::invalid_argument).
 /// Integrator::Exponential throws std::invalid_argument ("options.integrator") for a system
-/// without linear_part.
+/// without linear_part. Integrator::Auto (the default) runs choose_integrator's pick; the
+/// result's method and method_reason name the method that ran and why. With
+/// RunOptions::check_event_sequence the result's sequence_check compares the run's switches with
+/// those of a tighter run (its cost: see that option).
 template <class System, class Observer>
 SimulationResult<System> simulate(System& system, typename System::Mode mode,
                                   typename System::Scalar t0, const typename System::State& x0,

@@ -78,6 +78,14 @@ struct TradeRow {
   Scalar switch_time_error = std::numeric_limits<Scalar>::quiet_NaN();
   long missed_switches = 0;  ///< reference switches without a partner in the run
   long extra_switches = 0;   ///< switches of the run without a partner in the reference
+  /// Flag: the run's sequence of switches (from, to) differs from the reference's (a missed or
+  /// an extra switch), e.g. a short stick phase one of them resolved and the other did not.
+  bool sequence_differs = false;
+  /// Time of the first switch without a partner (of the run or of the reference), NaN when
+  /// the sequences agree.
+  Scalar first_sequence_difference = std::numeric_limits<Scalar>::quiet_NaN();
+  /// The integrator that ran (the variant's, or Integrator::Auto's choice) and why.
+  std::string method, method_reason;
   /// TradeStudyOptions::energy_residual of the run (NaN without one)
   Scalar energy_residual = std::numeric_limits<Scalar>::quiet_NaN();
   /// A finished run (started and status Success).
@@ -154,6 +162,8 @@ TradeRow<typename System::Scalar> run_trade_variant(const TradeVariant<System>& 
       row.t_reached = result.t;
       row.rhs_evaluations = result.stats.rhs_evaluations;
       row.events = result.stats.events;
+      row.method = result.method;
+      row.method_reason = result.method_reason;
       if (options.energy_residual) row.energy_residual = options.energy_residual(setup.system, result);
       if (!result.ok()) break;  // a failed run fails again: one repeat is enough
     }
@@ -189,6 +199,12 @@ void compare_trade_records(TradeRow<typename System::Scalar>& row, const TradeRe
 
   row.switch_time_error = 0;
   row.missed_switches = row.extra_switches = 0;
+  row.sequence_differs = false;
+  row.first_sequence_difference = std::numeric_limits<Scalar>::quiet_NaN();
+  auto unmatched = [&row](Scalar t) {
+    if (!row.sequence_differs) row.first_sequence_difference = t;
+    row.sequence_differs = true;
+  };
   std::size_t i = 0, j = 0;
   const auto& a = ref.switches;
   const auto& b = run.switches;
@@ -197,11 +213,15 @@ void compare_trade_records(TradeRow<typename System::Scalar>& row, const TradeRe
       row.switch_time_error = std::max(row.switch_time_error, Scalar(std::abs(a[i].t - b[j].t)));
       ++i, ++j;
     } else if (a[i].t <= b[j].t) {
+      unmatched(a[i].t);
       ++row.missed_switches, ++i;
     } else {
+      unmatched(b[j].t);
       ++row.extra_switches, ++j;
     }
   }
+  if (i < a.size()) unmatched(a[i].t);
+  if (j < b.size()) unmatched(b[j].t);
   row.missed_switches += static_cast<long>(a.size() - i);
   row.extra_switches += static_cast<long>(b.size() - j);
 }
@@ -229,8 +249,9 @@ std::pair<RunOptions<Scalar>, std::string> tightened(RunOptions<Scalar> run, Sca
 /// TradeStudyResult::validation, the reference's own error bound), then each variant
 /// `options.repeats` times. Row k: median CPU time, RHS evaluations, events, status,
 /// max and RMS error of options.output on the common grid relative to max |y_ref|, switch-time
-/// error and missed/extra switches (matched by (from, to) mode pair in time order), energy
-/// residual. A variant that fails or throws becomes a row with its status or message; when the
+/// error and missed/extra switches (matched by (from, to) mode pair in time order; a variant
+/// with any is flagged TradeRow::sequence_differs, with the time of the first), energy
+/// residual, and the method that ran. A variant that fails or throws becomes a row with its status or message; when the
 /// reference itself fails, `rows` is empty and `reference` says why. Writes nothing.
 /// Throws std::invalid_argument naming options.t_end, options.output_interval, options.repeats,
 /// options.output or options.validation_factor when out of range.

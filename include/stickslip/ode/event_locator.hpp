@@ -255,10 +255,12 @@ RootBracket<Scalar> newton_root(PhiSlope&& phi, Scalar lo, Scalar flo, Scalar sl
 /// the root, so the steps' root lies near first - d(first) / slope (`slope`: the dense guard's
 /// distance rate at first): probe a little beyond it, then 4x wider, until the sign changes, and
 /// finish by Illinois inside the step's bracket [lo, hi] (d(lo) >= 0 > d(hi)). The last call of
-/// step_to is at the returned bracket's hi.
+/// step_to is at the returned bracket's hi. This form starts after the step to `first` has been
+/// taken, its distance being `d_first`; refine_root_on_steps takes that step first.
 template <class Scalar, class StepTo>
-RootBracket<Scalar> refine_root_on_steps(StepTo&& step_to, Scalar first, Scalar slope, Scalar lo,
-                                         Scalar d_lo, Scalar hi, Scalar d_hi, Scalar tol) {
+RootBracket<Scalar> refine_root_on_steps_from(StepTo&& step_to, Scalar first, Scalar d_first,
+                                              Scalar slope, Scalar lo, Scalar d_lo, Scalar hi,
+                                              Scalar d_hi, Scalar tol) {
   Scalar stepped_to = first;
   auto probe = [&](Scalar tau) {
     stepped_to = tau;
@@ -273,7 +275,6 @@ RootBracket<Scalar> refine_root_on_steps(StepTo&& step_to, Scalar first, Scalar 
       d_hi = d;
     }
   };
-  const Scalar d_first = probe(first);
   narrow(first, d_first);
   if (slope < Scalar(0)) {
     // Bracket the steps' root next to first - d_first / slope (a little beyond it, then 4x
@@ -292,6 +293,14 @@ RootBracket<Scalar> refine_root_on_steps(StepTo&& step_to, Scalar first, Scalar 
   const auto br = illinois_root(probe, lo, d_lo, hi, d_hi, tol);
   if (stepped_to != br.hi) probe(br.hi);
   return br;
+}
+
+/// refine_root_on_steps_from after the step to `first`.
+template <class Scalar, class StepTo>
+RootBracket<Scalar> refine_root_on_steps(StepTo&& step_to, Scalar first, Scalar slope, Scalar lo,
+                                         Scalar d_lo, Scalar hi, Scalar d_hi, Scalar tol) {
+  const Scalar d_first = step_to(first);
+  return refine_root_on_steps_from(step_to, first, d_first, slope, lo, d_lo, hi, d_hi, tol);
 }
 
 }  // namespace detail

@@ -55,7 +55,7 @@ namespace stickslip {
 /// the step (refresh_error; the system's `version` tells whether A_m changed at a refresh), and
 /// steps of one length reuse their stage propagators. Samples and event location inside a Lawson
 /// step use its dense output (Dormand-Prince's order-4 continuous extension in the frame of Â),
-/// and event_state Reintegrate moves the located root onto re-taken steps of the method.
+/// and event_state Reintegrate (or Checked) moves the located root onto re-taken steps of the method.
 ///
 /// Events: a guard fires when it crosses at a grid point (GuardMonitor semantics, as in
 /// HybridStepper), or when the cubic Hermite interpolant of its value and slope between two
@@ -968,7 +968,7 @@ bool ExactLinearStepper<System>::find_event(const Mode& m, Scalar t1, StepperSta
   if (first >= t1) {
     xe_ = x1_;
     eval_guards(m, t1, xe_, gt_, st);
-  } else if (!exact_ && dense_ == Dense::Ready && opt_.event_state == EventState::Reintegrate) {
+  } else if (!exact_ && dense_ == Dense::Ready && opt_.event_state != EventState::DenseOutput) {
     te_ = refine_on_steps(m, first_guard, first, t1, st);
   } else {
     // From the root search's last point (a hop of at most the event time tolerance) where it

@@ -142,8 +142,11 @@ class HybridStepper {
 
   // Locate the earliest crossing in the accepted trial step [t, t1]; on return xe_ holds the
   // state at the event time (returned) and triggered_ the guards. When event_on_step_ is true the
-  // core's dense output of [t, t1] (x1_, f1_) covers [t, t_event]; otherwise fe_ holds f at the
-  // event and the core's dense output is that of the step [t, t_event].
+  // core's dense output of [t, t1] (x1_, f1_) covers [t, t_event]; otherwise the core's dense
+  // output is that of the step [t, t_event], ending at step_end() with f = fe_ there.
+  // EventState::Checked on an adaptive method: the re-taken step to the dense output's root
+  // estimates the dense output's error there; within the tolerances the dense state is handed
+  // (xe_; the re-taken step's end in xr_), otherwise the root is refined on re-taken steps.
   Scalar locate_event(const Mode& m, Scalar t, Scalar h, Scalar t1, StepperStats& st);
 
   // After locate_event placed an event at te: when a guard that fired was disarmed but lies more
@@ -153,6 +156,9 @@ class HybridStepper {
   // where the guard is armed, and true is returned.
   bool cut_back_to_rearm(const Mode& m, Scalar t, Scalar& h, Scalar& t1, Scalar te,
                          StepperStats& st);
+
+  // The end of the step whose dense output covers [t, t_event] when event_on_step_ is false.
+  const State& step_end() const { return dense_handed_ ? xr_ : xe_; }
 
   template <class Observer>
   bool emit_samples(Observer& obs, const Mode& m, Scalar a, Scalar h, Scalar upto,
@@ -167,7 +173,7 @@ class HybridStepper {
   Options opt_;
   Core core_;
   detail::GuardMonitor<Scalar> monitor_;
-  State x_, f_, x1_, f1_, xe_, fe_, xs_;
+  State x_, f_, x1_, f1_, xe_, fe_, xs_, xr_;
   GuardVector ga_, gb_, gt_, roots_;
   struct GuardSet {
     GuardVector a, b, t;
@@ -175,6 +181,7 @@ class HybridStepper {
   std::vector<GuardSet> guard_sets_;  // parked guard vectors, indexed by guard count
   TriggeredGuards triggered_;
   bool event_on_step_ = false;
+  bool dense_handed_ = false;  // Checked: xe_ is the dense output, xr_ the re-taken step's end
   detail::ZenoGuard<Scalar> zeno_;
   Scalar t0_ = 0;
   long next_sample_ = 0;
@@ -245,6 +252,13 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
   const Eigen::Index ng = gb_.size();
   triggered_.clear();
   event_on_step_ = false;
+  dense_handed_ = false;
+  const long rhs_before = st.rhs_evaluations;
+  struct CountEventRhs {  // the re-taken steps' evaluations, however locate_event returns
+    StepperStats& st;
+    long before;
+    ~CountEventRhs() { st.event_state_rhs_evaluations += st.rhs_evaluations - before; }
+  } count{st, rhs_before};
   if (opt_.event_location == EventLocation::Bisection) {
     // The paper's way: halve [lo, hi], re-integrating one step from t to the midpoint.
     const Scalar eps = std::numeric_limits<Scalar>::epsilon();
@@ -325,9 +339,23 @@ auto HybridStepper<System, Method>::locate_event(const Mode& m, Scalar t, Scalar
     eval_guards(m, tau, xe_, gt_, st);
     return monitor_.distance(first_guard, gt_[first_guard]);
   };
+  // Checked: the dense state at `first` (before the re-taken step replaces the core's stages),
+  // then the method's own step to `first`, of the method's full order; their difference estimates
+  // the dense output's error at the event.
+  const bool check = adaptive_ && opt_.event_state == EventState::Checked;
+  if (check) core_.dense((first - t) / h, h, x_, f_, x1_, f1_, xr_);
+  const Scalar d_first = step_to(first);
+  if (check && detail::error_norm(sys_, xe_ - xr_, x_, xe_, opt_.rtol, opt_.atol) <= Scalar(1)) {
+    // Within the tolerances: hand the dense state (on the dense output's switching surface, past
+    // zero by at most |g'| event_time_tolerance), as DenseOutput; the core keeps the re-taken
+    // step [t, first], whose end moves to xr_.
+    xe_.swap(xr_);
+    dense_handed_ = true;
+    return first;
+  }
   // The last step it takes is to br.hi (re-stepping to t1 reproduces x1 exactly).
-  const auto br = detail::refine_root_on_steps(
-      step_to, first, slope, t, monitor_.distance(first_guard, ga_[first_guard]), t1,
+  const auto br = detail::refine_root_on_steps_from(
+      step_to, first, d_first, slope, t, monitor_.distance(first_guard, ga_[first_guard]), t1,
       monitor_.distance(first_guard, gb_[first_guard]), tol);
   // Fired: every guard crossed at the handed state, and every guard whose dense-output root lies
   // within the event time tolerance of the first one (guards that cross together, such as those
@@ -348,7 +376,7 @@ bool HybridStepper<System, Method>::cut_back_to_rearm(const Mode& m, Scalar t, S
   // The dense output covering [t, te] (see locate_event); the excursion of a guard that leaves
   // zero and returns within [t, te] peaks inside it, sampled at its middle and quarter points.
   const Scalar span = event_on_step_ ? h : te - t;
-  const State& xb = event_on_step_ ? x1_ : xe_;
+  const State& xb = event_on_step_ ? x1_ : step_end();
   const State& fb = event_on_step_ ? f1_ : fe_;
   for (const Scalar frac : {Scalar(0.5), Scalar(0.25), Scalar(0.75)}) {
     const Scalar tc = t + frac * (te - t);
@@ -401,7 +429,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
   Result r;
   StepperStats& st = r.stats;
   x_ = x0;
-  for (State* v : {&f_, &x1_, &f1_, &xe_, &fe_, &xs_}) v->resizeLike(x0);
+  for (State* v : {&f_, &x1_, &f1_, &xe_, &fe_, &xs_, &xr_}) v->resizeLike(x0);
   core_.initialize(x0);
   triggered_.clear();
   triggered_.reserve(static_cast<std::size_t>(std::max<Eigen::Index>(sys_.num_guards(mode), 8)));
@@ -474,6 +502,16 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       continue;
     }
     ++st.accepted_steps;
+    // The step the controller proposes after this one (used as is after an event: the step size
+    // is kept across the transition, as for a step without event, rather than restarted small).
+    Scalar fac = 1;
+    if (adaptive_) {
+      fac = err > 0 ? opt_.safety * pow(err, Scalar(-1) / Scalar(Method::error_order + 1))
+                    : Scalar(5);
+      fac = std::min(Scalar(5), std::max(Scalar(0.2), fac));
+      if (after_reject) fac = std::min(fac, Scalar(1));
+    }
+    const Scalar h_next = h * fac;
 
     // Interior guard samples (options.guard_samples): a guard that has crossed at a sample but
     // not (or no longer) at the step end cuts the step back to that sample, re-taken with the
@@ -514,7 +552,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
     if (event) {
       const bool sampled =
           event_on_step_ ? emit_samples(obs, mode, t, h, te, x_, f_, x1_, f1_)
-                         : emit_samples(obs, mode, t, te - t, te, x_, f_, xe_, fe_);
+                         : emit_samples(obs, mode, t, te - t, te, x_, f_, step_end(), fe_);
       if (!sampled)
         return finish(r, Status::StoppedByObserver, te, xe_, mode,
                       "stopped by observer " + detail::at_time(te));
@@ -536,11 +574,17 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       std::string zeno_reason;
       if (!zeno_.record(t, immediate, st.events, zeno_reason))
         return finish(r, Status::ZenoGuard, t, x_, mode, std::move(zeno_reason));
-      if (!start_mode(mode, t, st))
+      const long rhs_before_restart = st.rhs_evaluations;
+      const bool started = start_mode(mode, t, st);
+      st.restart_rhs_evaluations += st.rhs_evaluations - rhs_before_restart;
+      if (!started)
         return finish(r, Status::NonFiniteState, t, x_, mode,
                       "right-hand side or guards not finite after the transition " +
                           detail::at_time(t));
-      if (!adaptive_) {
+      if (adaptive_) {
+        h = h_next;
+        after_reject = false;
+      } else {
         h = opt_.fixed_step;
         nan_recovery = false;
         grid_t0 = t;
@@ -570,11 +614,7 @@ auto HybridStepper<System, Method>::integrate(Mode mode, Scalar t0, const State&
       return finish(r, Status::StoppedByObserver, t, x_, mode,
                     "stopped by observer " + detail::at_time(t));
     if (adaptive_) {
-      Scalar fac = err > 0 ? opt_.safety * pow(err, Scalar(-1) / Scalar(Method::error_order + 1))
-                           : Scalar(5);
-      fac = std::min(Scalar(5), std::max(Scalar(0.2), fac));
-      if (after_reject) fac = std::min(fac, Scalar(1));
-      h *= fac;
+      h *= fac;  // (applied to a step cut back as well)
     } else if (!nan_recovery) {
       h = opt_.fixed_step;
     }

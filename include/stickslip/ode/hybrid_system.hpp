@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -95,6 +96,13 @@ struct StepperStats {
   /// Steps cut back to an interior guard sample (StepperOptions::guard_samples) at which a guard
   /// had crossed.
   long guard_sample_cuts = 0;
+  /// Of rhs_evaluations, those spent on the state at events (HybridStepper: the steps re-taken to
+  /// a located event time, bisection sub-steps). The root search on the dense output costs guard
+  /// evaluations only.
+  long event_state_rhs_evaluations = 0;
+  /// Of rhs_evaluations, those spent restarting after events (HybridStepper: the new mode's
+  /// right-hand side at the event time).
+  long restart_rhs_evaluations = 0;
 };
 
 /// One located event as reported to observers.
@@ -128,6 +136,21 @@ void notify_event(Observer& obs, const EventRecord<Scalar, Mode>& record, const 
 }
 }  // namespace detail
 
+/// Whether a run's sequence of switches is converged in the tolerance (simulate() with
+/// RunOptions::check_event_sequence): the run is repeated at a tighter tolerance and the two
+/// sequences of transitions (from-mode, to-mode), in order, compared.
+template <class Scalar>
+struct EventSequenceCheck {
+  bool checked = false;  ///< the check ran
+  bool agree = true;     ///< same number of transitions, each with the same from and to modes
+  /// Time of the first transition that differs (the earlier of the two runs' times at that
+  /// index; a transition only one run has counts), NaN when they agree.
+  Scalar first_difference = std::numeric_limits<Scalar>::quiet_NaN();
+  long events = 0;        ///< transitions of the run
+  long events_tight = 0;  ///< transitions of the tighter run
+  Scalar rtol_tight = 0;  ///< the tighter run's rtol (RK4: its fixed_step)
+};
+
 /// Result of HybridStepper::integrate.
 template <class Scalar, class State, class Mode>
 struct HybridResult {
@@ -139,6 +162,11 @@ struct HybridResult {
   std::string message;   ///< empty on success; otherwise what happened and where
   /// Counters of the run.
   StepperStats stats;
+  /// simulate(): the integrator that ran ("dopri5", ...) and why (Integrator::Auto's rule, or
+  /// "options.integrator"); empty from a stepper called directly.
+  std::string method, method_reason;
+  /// simulate() with RunOptions::check_event_sequence: the switch sequence against a tighter run.
+  EventSequenceCheck<Scalar> sequence_check{};
   /// status == Status::Success.
   bool ok() const noexcept { return status == Status::Success; }
 };

@@ -21,12 +21,22 @@ enum class EventLocation : std::uint8_t {
 /// Which state an event hands to the transition, once its time is located on the dense output.
 enum class EventState : std::uint8_t {
   DenseOutput,  ///< the dense output at the located time (no further right-hand-side evaluation)
-  Reintegrate   ///< one step of the method from the step start to the event, its root refined on it
+  Reintegrate,  ///< one step of the method from the step start to the event, its root refined on it
+  /// Adaptive methods of HybridStepper: one step of the method from the step start to the located
+  /// time estimates the dense output's error there (their difference); within the tolerances
+  /// (error norm <= 1) the dense output is handed, otherwise the root is refined as Reintegrate.
+  /// Elsewhere (RK4, ExactLinearStepper) as Reintegrate.
+  Checked
 };
 
 /// Human-readable name of an event-state choice.
 inline const char* to_string(EventState e) noexcept {
-  return e == EventState::Reintegrate ? "reintegrate" : "dense_output";
+  switch (e) {
+    case EventState::DenseOutput: return "dense_output";
+    case EventState::Reintegrate: return "reintegrate";
+    case EventState::Checked: return "checked";
+  }
+  return "unknown";
 }
 
 /// Human-readable name of an event location strategy.
@@ -62,7 +72,7 @@ struct StepperOptions {
   long max_steps = 100'000'000;        ///< budget of step attempts (accepted + rejected)
   /// How a guard crossing is located in time (default: root finding on the dense output).
   EventLocation event_location = EventLocation::DenseRootFinding;
-  EventState event_state = EventState::Reintegrate;  ///< state at a root-found event (not bisection); see docs/ode.md
+  EventState event_state = EventState::Checked;  ///< state at a root-found event (not bisection); see docs/ode.md
   Scalar event_time_tolerance = Scalar(1e-12);  ///< width of the final bracket of an event time
   Scalar guard_zero_tolerance = Scalar(1e-12);  ///< |g| below this at a mode start counts as zero
   /// Guard values checked on the dense output at this many equally spaced interior points of

@@ -10,6 +10,16 @@
 namespace stickslip {
 
 template <class Scalar_, class Law_, int Modes>
+bool FrictionDampedSystem<Scalar_, Law_, Modes>::every_mode_exact() const {
+  using std::isnan;  // (the exact test of linear_part below, for every mode at once)
+  for (std::size_t i = 0; i < moving_.size(); ++i)
+    if (moving_[i] || isnan(kinetic_constant_[i])) return false;
+  for (const Load& l : loads_)
+    if (l.time_function) return false;
+  return true;
+}
+
+template <class Scalar_, class Law_, int Modes>
 auto FrictionDampedSystem<Scalar_, Law_, Modes>::linear_part(const Mode& mode, Scalar t, const State& x,
                                                              LinearPart<Scalar>& lp) -> bool {
   if (x.size() != state_size())
