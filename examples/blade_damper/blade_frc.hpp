@@ -7,6 +7,7 @@
 /// friction, mu = 0); and the optimal preload (`--optimise-preload`). docs/steady_state.md.
 
 #include "blade_regime.hpp"
+#include "frc_peak.hpp"
 #include "blade_scene.hpp"
 #include "blade_sweep.hpp"
 
@@ -626,8 +627,7 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
     << " (here over one period of the orbit)\",\n  \"branches\": [";
   for (std::size_t k = 0; k < branches.size(); ++k) {
     const auto& b = branches[k];
-    const auto peak = std::max_element(b.points.begin(), b.points.end(),
-                                       [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
+    const std::size_t peak = stable_peak(b.points);
     j << (k ? "," : "") << "\n    {\"preload_N\": " << jnum(b.preload) << ", \"status\": \"" << b.status
       << "\", \"message\": \"" << json_escape(b.message) << "\", \"monodromy\": \"" << b.monodromy << "\", \"points\": " << b.points.size()
       << ", \"restarts\": " << b.restarts << ", \"separate_segment_points\": " << b.separate_points()
@@ -648,8 +648,9 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
         << "}";
     j << "]"
       << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
-    if (peak != b.points.end())
-      j << ", \"peak_tip_m\": " << jnum(peak->tip_amplitude) << ", \"peak_frequency_hz\": " << jnum(peak->omega / (2 * M_PI));
+    if (peak < b.points.size())  // stable orbits only (frc_peak.hpp)
+      j << ", \"peak_tip_m\": " << jnum(b.points[peak].tip_amplitude)
+        << ", \"peak_frequency_hz\": " << jnum(b.points[peak].omega / (2 * M_PI));
     j << "}";
   }
   j << "\n  ]\n}\n";
@@ -883,11 +884,11 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
   for (const auto& b : branches) {
     points += b.points.size();
     cpu += b.cpu_seconds;
-    const auto peak = std::max_element(b.points.begin(), b.points.end(),
-                                       [](const FrcPoint& a, const FrcPoint& c) { return a.tip_amplitude < c.tip_amplitude; });
-    if (peak == b.points.end()) continue;
+    const std::size_t peak = stable_peak(b.points);
+    if (peak == b.points.size()) continue;
     char t[128];
-    std::snprintf(t, sizeof t, "; N0 %g N: peak %.3e m at %.2f Hz", b.preload, peak->tip_amplitude, peak->omega / (2 * M_PI));
+    std::snprintf(t, sizeof t, "; N0 %g N: stable peak %.3e m at %.2f Hz", b.preload, b.points[peak].tip_amplitude,
+                  b.points[peak].omega / (2 * M_PI));
     peaks += t;
   }
   std::printf("frc: %zu branches, %zu points, %.1f s CPU%s; files frc.csv, frc_linear.csv, frc.json in %s\n",

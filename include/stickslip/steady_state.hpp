@@ -13,6 +13,7 @@
 #include "stickslip/steady_state/peak_response.hpp"
 #include "stickslip/steady_state/period_doubling.hpp"
 #include "stickslip/steady_state/period_run.hpp"
+#include "stickslip/steady_state/pitchfork.hpp"
 #include "stickslip/steady_state/poincare.hpp"
 #include "stickslip/steady_state/shooting.hpp"
 #include "stickslip/steady_state/shooting_options.hpp"

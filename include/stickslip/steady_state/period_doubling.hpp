@@ -7,6 +7,7 @@
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/bifurcation.hpp>
 #include <stickslip/steady_state/continuation.hpp>
+#include <stickslip/steady_state/detail/branch_start.hpp>
 #include <stickslip/steady_state/period_run.hpp>
 #include <stickslip/steady_state/shooting.hpp>
 
@@ -125,52 +126,35 @@ FlipPoint<System> PeriodDoubling<System>::locate_flip(const ContinuationPoint<Sy
     return f;
   }
   Shooting<System> shooting(sys_, shooting_);
-  struct End {
-    Scalar p, g;  // g = mu + 1
-    PeriodicOrbit<System> orbit;
-  };
-  End lo{a.parameter, flip_multiplier(a.orbit.monodromy, nullptr) + 1, a.orbit};
-  End hi{b.parameter, flip_multiplier(b.orbit.monodromy, nullptr) + 1, b.orbit};
+  using End = detail::SecantEnd<System>;
+  const End lo{a.parameter, flip_multiplier(a.orbit.monodromy, nullptr) + 1, a.orbit};
+  const End hi{b.parameter, flip_multiplier(b.orbit.monodromy, nullptr) + 1, b.orbit};
   if (!(lo.g * hi.g <= 0)) {
     f.message = "no multiplier crosses -1 between the points (mu + 1 = " + detail::format_value(lo.g) + ", " +
                 detail::format_value(hi.g) + ")";
     return f;
   }
-  int side = 0;  // Illinois: halve the value of the end kept twice
-  for (int it = 0; it < 40; ++it) {
-    End* best = std::abs(lo.g) <= std::abs(hi.g) ? &lo : &hi;
-    if (std::abs(best->g) <= tolerance) {
-      f.ok = true;
-      f.parameter = best->p;
-      f.orbit = best->orbit;
-      f.multiplier = flip_multiplier(best->orbit.monodromy, &f.eigenvector);
-      const auto P = shooting_.periodic_indices(a.orbit.x0.size());
-      f.tangent.resize(static_cast<Eigen::Index>(P.size()) + 1);
-      for (std::size_t k = 0; k < P.size(); ++k)
-        f.tangent[static_cast<Eigen::Index>(k)] = b.orbit.x0[P[k]] - a.orbit.x0[P[k]];
-      f.tangent[f.tangent.size() - 1] = b.parameter - a.parameter;
-      f.tangent.normalize();
-      return f;
-    }
-    const Scalar p = (lo.p * hi.g - hi.p * lo.g) / (hi.g - lo.g);
+  // The secant on g = mu + 1, each orbit shot at fixed p from the bracket's nearer orbit.
+  const auto shoot = [&](Scalar p, const End& from, End& e, std::string& why) {
     set_(sys_, p);
-    const PeriodicOrbit<System> o = shooting.forced(best->orbit.mode, best->orbit.t0, best->orbit.x0, period_(p));
-    if (!o.ok()) {
-      f.message = "the orbit at p = " + detail::format_value(p) + " failed: " + o.message;
-      return f;
+    e.p = p;
+    e.orbit = shooting.forced(from.orbit.mode, from.orbit.t0, from.orbit.x0, period_(p));
+    if (!e.orbit.ok()) {
+      why = "the orbit at p = " + detail::format_value(p) + " failed: " + e.orbit.message;
+      return false;
     }
-    const Scalar g = flip_multiplier(o.monodromy, nullptr) + 1;
-    if ((g <= 0) == (lo.g <= 0)) {
-      lo = End{p, g, o};
-      if (side == -1) hi.g /= 2;
-      side = -1;
-    } else {
-      hi = End{p, g, o};
-      if (side == 1) lo.g /= 2;
-      side = 1;
-    }
-  }
-  f.message = "the secant on mu + 1 did not reach the tolerance in 40 orbits";
+    e.g = flip_multiplier(e.orbit.monodromy, nullptr) + 1;
+    return true;
+  };
+  End found;
+  if (!detail::illinois_secant(lo, hi, shoot, [&](const End& e) { return std::abs(e.g) <= tolerance; }, found,
+                               f.message))
+    return f;
+  f.ok = true;
+  f.parameter = found.p;
+  f.orbit = found.orbit;
+  f.multiplier = flip_multiplier(found.orbit.monodromy, &f.eigenvector);
+  f.tangent = detail::branch_secant(a, b, shooting_);
   return f;
 }
 
@@ -197,61 +181,12 @@ ContinuationResult<System> PeriodDoubling<System>::period_doubled_branch(const F
   dir.normalize();
   // Newton on (x_P(t0 + 2T(p)) - x_P, dir^T (y - y_f) - offset) = 0, y = (x_P, p).
   Shooting<System> shooting(sys_, shooting_);
-  State x = xf;
   Scalar p = flip.parameter;
-  for (Eigen::Index k = 0; k < np; ++k) x[P[static_cast<std::size_t>(k)]] += offset * dir[k];
-  p += offset * dir[np];
-  auto pack = [&](const State& s, Scalar q) {
-    Vector y(np + 1);
-    for (Eigen::Index k = 0; k < np; ++k) y[k] = s[P[static_cast<std::size_t>(k)]];
-    y[np] = q;
-    return y;
-  };
-  const Vector y_f = pack(xf, flip.parameter);
-  PeriodicOrbit<System> orbit;
-  Vector r, rp, rm, rhs(np + 1), dy(np + 1);
-  Matrix J(np + 1, np + 1);
-  for (int it = 0; it <= shooting_.max_iterations; ++it) {
-    set_(sys_, p);
-    const PeriodRun<System> run = run_period(sys_, flip.orbit.mode, flip.orbit.t0, x, 2 * period_(p), shooting_, true);
-    if (!run.ok()) {
-      result.message = "the 2T orbit run failed at p = " + detail::format_value(p) + ": " + run.message;
-      return result;
-    }
-    const Scalar res = shooting.residual(run.x_end, x, r);
-    if (res <= shooting.tolerance_at(x)) {
-      orbit = shooting.make_orbit(run, flip.orbit.mode, flip.orbit.t0, x, 2 * period_(p), false, res, it + 1);
-      break;
-    }
-    if (it == shooting_.max_iterations) {
-      result.message = "Newton on the first 2T orbit did not converge (residual " + detail::format_value(res) + ")";
-      return result;
-    }
-    const Scalar h = shooting_.fd_step * std::max(Scalar(1), std::abs(p));
-    set_(sys_, p + h);
-    const PeriodRun<System> up = run_period(sys_, flip.orbit.mode, flip.orbit.t0, x, 2 * period_(p + h), shooting_, false);
-    set_(sys_, p - h);
-    const PeriodRun<System> down = run_period(sys_, flip.orbit.mode, flip.orbit.t0, x, 2 * period_(p - h), shooting_, false);
-    if (!up.ok() || !down.ok()) {
-      result.message = "the 2T run at p +- h failed near p = " + detail::format_value(p);
-      return result;
-    }
-    shooting.residual(up.x_end, x, rp);
-    shooting.residual(down.x_end, x, rm);
-    J.topLeftCorner(np, np) = shooting.periodic_block(run.monodromy) - Matrix::Identity(np, np);
-    J.topRightCorner(np, 1) = (rp - rm) / (2 * h);
-    J.bottomRows(1) = dir.transpose();
-    rhs.head(np) = -r;
-    rhs[np] = offset - dir.dot(pack(x, p) - y_f);
-    if (!shooting.newton_step(J, rhs, dy)) {
-      result.message = "singular Newton matrix on the first 2T orbit at p = " + detail::format_value(p);
-      return result;
-    }
-    for (Eigen::Index k = 0; k < np; ++k) x[P[static_cast<std::size_t>(k)]] += dy[k];
-    p += dy[np];
-  }
+  std::string why;
+  const PeriodicOrbit<System> orbit =
+      detail::start_on_branch<System>(sys_, set_, period_, 2, shooting_, flip.orbit, flip.parameter, dir, offset, p, why);
   if (!orbit.ok()) {
-    result.message = "the first 2T orbit: " + orbit.message;
+    result.message = "the first 2T orbit: " + why;
     return result;
   }
   // Not the period-T orbit: its state after one forcing period differs from its start.
@@ -263,16 +198,9 @@ ContinuationResult<System> PeriodDoubling<System>::period_doubled_branch(const F
                      " is the period-T orbit (raise the offset)";
     return result;
   }
-  ContinuationOptions<Scalar> co = opt_;
-  co.direction = p >= flip.parameter ? 1 : -1;
-  if (!(p >= co.parameter_min && p <= co.parameter_max)) {
-    result.message = "the first 2T orbit's p = " + detail::format_value(p) + " is outside the range";
-    return result;
-  }
   const auto period = period_;
-  Continuation<System> cont(sys_, set_, [period](Scalar q) { return 2 * period(q); }, shooting_, co);
-  if (start_mode_) cont.start_mode(start_mode_);
-  return cont.run(orbit.mode, orbit.t0, orbit.x0, p);
+  return detail::continue_new_branch<System>(sys_, set_, [period](Scalar q) { return 2 * period(q); }, shooting_, opt_,
+                                             start_mode_, orbit, p, flip.parameter, "2T orbit");
 }
 
 }  // namespace stickslip

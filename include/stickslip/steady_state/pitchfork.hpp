@@ -1,0 +1,409 @@
+#pragma once
+/// \file pitchfork.hpp
+/// \brief Symmetry breaking along a branch of symmetric forced periodic orbits: a multiplier
+/// through +1 classified as a symmetry-breaking pitchfork (its Floquet vector antisymmetric) or
+/// a fold (symmetric), the pitchfork located to a tolerance, and the pair of asymmetric branches
+/// born there, one continued and the other its mirror image.
+///
+/// The system's symmetry is a linear involution S of the state (S S = I; e.g. the permutation
+/// that swaps two identical substructures, with the mode mapped the same way) that maps
+/// solutions onto solutions: x(t) solves the equations iff S x(t) does (the forcing is
+/// S-invariant). A symmetric orbit has S x(t) = x(t); its monodromy M commutes with S, so M
+/// maps each eigenspace of S into itself:
+///
+///     V+ = {v : S v = v},  V- = {v : S v = -v},   M V+ in V+,  M V- in V-,
+///
+/// and its multipliers split into those of M restricted to V+ (symmetric Floquet vectors) and to
+/// V- (antisymmetric ones). A real multiplier of the V- block through +1 is a symmetry-breaking
+/// pitchfork: the symmetric branch goes on (the crossing is not in its own equations, which
+/// stay regular in V+), and a pair of asymmetric orbits x and S x branches off along the
+/// antisymmetric Floquet vector. A multiplier of the V+ block through +1 is a fold of the
+/// symmetric branch (or a transcritical point within the symmetric orbits).
+
+#include <stickslip/detail/validate.hpp>
+#include <stickslip/steady_state/bifurcation.hpp>
+#include <stickslip/steady_state/continuation.hpp>
+#include <stickslip/steady_state/detail/branch_start.hpp>
+#include <stickslip/steady_state/shooting.hpp>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace stickslip {
+
+/// A multiplier through +1 between two points of a symmetric branch (SymmetricBranches).
+template <class System>
+struct SymmetryBreakingPoint {
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// Dynamic vector type.
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  bool ok = false;      ///< classified (and, for a pitchfork from locate(), located); else see message
+  std::string message;  ///< why not
+  /// Pitchfork: the crossing multiplier's Floquet vector is antisymmetric (S v = -v): symmetry
+  /// breaking. Fold: it is symmetric (S v = v).
+  BifurcationKind kind = BifurcationKind::Fold;
+  /// true: `parameter` is where the multiplier is 1 to the tolerance of locate(); false: the
+  /// linear interpolation between the two points (classify(), or a fold).
+  bool located = false;
+  Scalar parameter = 0;   ///< p at the crossing
+  Scalar multiplier = 0;  ///< the crossing multiplier at `orbit`
+  /// The symmetric orbit nearest the crossing (at `parameter` when located).
+  PeriodicOrbit<System> orbit;
+  /// Real Floquet vector of the crossing multiplier in the periodic components (max norm 1).
+  Vector eigenvector;
+  /// The symmetric branch's unit tangent in (x_P, p) (the secant of the two points).
+  Vector tangent;
+};
+
+/// Symmetry breaking on the branches that Continuation follows (same system, parameter map,
+/// period and options), for the symmetry `S` (a linear involution of the state; see the file's
+/// description). The system is left at the parameter of the last orbit.
+template <class System>
+class SymmetricBranches {
+ public:
+  /// Floating-point type.
+  using Scalar = typename System::Scalar;
+  /// State of the system.
+  using State = typename System::State;
+  /// Mode of the system.
+  using Mode = typename System::Mode;
+  /// The continuation whose branches are examined.
+  using Cont = Continuation<System>;
+  /// Dynamic vector type.
+  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+  /// Dynamic matrix type.
+  using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
+  /// The mode of the mirror image of a state in `mode` (e.g. the contact states of two mirrored
+  /// dampers swapped).
+  using ModeImage = std::function<Mode(const Mode&)>;
+
+  /// Keeps a reference to `system`. Throws std::invalid_argument for empty callbacks, invalid
+  /// options, or a `symmetry` that is not a finite square involution (max |S S - I| <= 1e-10
+  /// max(1, max |S|^2)).
+  SymmetricBranches(System& system, typename Cont::SetParameter set_parameter, typename Cont::PeriodOf period,
+                    Matrix symmetry, ShootingOptions<Scalar> shooting = {}, ContinuationOptions<Scalar> options = {})
+      : sys_(system), set_(std::move(set_parameter)), period_(std::move(period)), S_(std::move(symmetry)),
+        shooting_(std::move(shooting)), opt_(options) {
+    static const std::string where = "SymmetricBranches";
+    if (!set_) throw std::invalid_argument(where + ": set_parameter must not be empty");
+    if (!period_) throw std::invalid_argument(where + ": period must not be empty");
+    opt_.validate(where);
+    if (S_.rows() == 0 || S_.rows() != S_.cols())
+      detail::throw_invalid(where, "symmetry must be a non-empty square matrix, rows", S_.rows());
+    if (!detail::all_finite(S_)) throw std::invalid_argument(where + ": symmetry must be finite");
+    const Scalar scale = std::max(Scalar(1), S_.cwiseAbs().maxCoeff() * S_.cwiseAbs().maxCoeff());
+    const Scalar defect = (S_ * S_ - Matrix::Identity(S_.rows(), S_.rows())).cwiseAbs().maxCoeff();
+    if (!(defect <= Scalar(1e-10) * scale))
+      detail::throw_invalid(where, "symmetry must be an involution (S S = I); max |S S - I|", defect);
+  }
+
+  /// The mode of a mirrored state (default: the same mode).
+  void mode_image(ModeImage f) { mode_image_ = std::move(f); }
+  /// The start-mode rule of the continued branches and mirrored orbits (Continuation::start_mode).
+  void start_mode(typename Cont::StartMode rule) { start_mode_ = std::move(rule); }
+  /// An orbit counts as symmetric when max |S x0 - x0| over its periodic components is at most
+  /// `relative` max(1, max |x0|) (default 1e-6). Throws std::invalid_argument unless > 0.
+  void symmetry_tolerance(Scalar relative) {
+    detail::require_positive("SymmetricBranches::symmetry_tolerance", "relative", relative);
+    sym_tol_ = relative;
+  }
+
+  /// max |S x - x| over the periodic components (0 for a symmetric state). Throws
+  /// std::invalid_argument when x's size is not the symmetry's.
+  Scalar asymmetry(const State& x) const {
+    check_size("SymmetricBranches::asymmetry", x.size());
+    const State d = S_ * x - x;
+    Scalar m = 0;
+    for (const auto i : shooting_.periodic_indices(x.size())) m = std::max(m, std::abs(d[i]));
+    return m;
+  }
+
+  /// The multipliers of a symmetric orbit's monodromy (PeriodicOrbit::monodromy, over the
+  /// periodic components of a state of size n) split by the symmetry of their Floquet vectors:
+  /// {those of M on V+, those of M on V-}. Throws std::invalid_argument when the sizes do not
+  /// match the symmetry's.
+  std::pair<Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>, Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>>
+  multipliers_by_symmetry(const Matrix& monodromy, Eigen::Index n) const {
+    static const std::string where = "SymmetricBranches::multipliers_by_symmetry";
+    check_size(where, n);
+    const auto np = static_cast<Eigen::Index>(shooting_.periodic_indices(n).size());
+    if (monodromy.rows() != np || monodromy.cols() != np)
+      detail::throw_invalid(where, "monodromy must be square over the periodic components (" + std::to_string(np) +
+                                       "), rows",
+                            monodromy.rows());
+    const auto block = [&](int sign) {
+      const Matrix Q = basis(n, sign);
+      Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1> mu;
+      if (Q.cols() > 0) mu = Eigen::EigenSolver<Matrix>(Q.transpose() * monodromy * Q, false).eigenvalues();
+      return mu;
+    };
+    return {block(1), block(-1)};
+  }
+
+  /// The multiplier through +1 between points `a` and `b` of a symmetric branch (a Fold or
+  /// Pitchfork of locate_bifurcations): Pitchfork when det(M - I) on the V- block changes sign
+  /// between them (a real multiplier of that block crossed +1; a complex pair contributes
+  /// |mu - 1|^2 > 0), Fold when det(M - I) on the V+ block does. `parameter`: the linear
+  /// interpolation of that determinant's zero. Not ok when an orbit is not symmetric
+  /// (symmetry_tolerance) or neither determinant changes sign.
+  SymmetryBreakingPoint<System> classify(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b) const;
+
+  /// classify(), and a pitchfork located: the V- multiplier mu nearest +1 driven to
+  /// |mu - 1| <= tolerance by a secant in p on det(M - I) over V- (Illinois: the bracket [a, b]
+  /// kept; the determinant is smooth in p where the multiplier itself may be complex), each orbit shot
+  /// at fixed p from the bracket's nearer orbit made symmetric ((x + S x) / 2). A fold is
+  /// returned as classified (not located: there is no orbit past it at fixed p). Not ok when the
+  /// points lie on different sections t0, a shooting fails or the secant does not converge in
+  /// 40 orbits.
+  SymmetryBreakingPoint<System> locate(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
+                                       Scalar tolerance = Scalar(1e-8));
+
+  /// One of the asymmetric pair born at a located pitchfork: the first orbit by Newton on
+  /// x_P(t0 + T(p)) - x_P = 0 with (x_P, p) at signed arclength `offset` from the pitchfork
+  /// along the antisymmetric Floquet vector (the other sign gives the mirror image), then
+  /// Continuation away from the pitchfork in p. StartFailed when the first orbit does not
+  /// converge, is the symmetric orbit (asymmetry below 100 Newton tolerances) or lies outside
+  /// the range. Throws std::invalid_argument unless `pitchfork` is an ok Pitchfork and `offset`
+  /// is finite and non-zero.
+  ContinuationResult<System> asymmetric_branch(const SymmetryBreakingPoint<System>& pitchfork, Scalar offset);
+
+  /// The mirror image of a point of an asymmetric branch: the orbit from (mode_image(mode),
+  /// S x0) at the same p, shot again (its outputs, events and multipliers are the image's own;
+  /// the multipliers equal the point's). Not ok when that shooting fails.
+  ContinuationPoint<System> image(const ContinuationPoint<System>& point);
+
+ private:
+  void check_size(const std::string& where, Eigen::Index n) const {
+    if (n != S_.rows())
+      detail::throw_invalid(where, "the state size must be the symmetry's (" + std::to_string(S_.rows()) + "), got",
+                            n);
+  }
+  // Orthonormal bases of V+ (sign +1) and V- (sign -1) in the periodic components.
+  Matrix basis(Eigen::Index n, int sign) const {
+    const auto P = shooting_.periodic_indices(n);
+    const auto np = static_cast<Eigen::Index>(P.size());
+    Matrix proj(np, np);
+    for (Eigen::Index i = 0; i < np; ++i)
+      for (Eigen::Index j = 0; j < np; ++j)
+        proj(i, j) = (Scalar(i == j ? 1 : 0) + Scalar(sign) * S_(P[std::size_t(i)], P[std::size_t(j)])) / 2;
+    Eigen::ColPivHouseholderQR<Matrix> qr(proj);
+    qr.setThreshold(Scalar(1e-8));
+    const Matrix Q = qr.householderQ();
+    return Q.leftCols(qr.rank());
+  }
+  // The real multiplier nearest +1 of M restricted to the subspace with orthonormal basis Q (M Q
+  // = Q B: B = Q^T M Q), with its Floquet vector Q w (max norm 1); NaN when there is none.
+  Scalar nearest_plus_one(const Matrix& M, const Matrix& Q, Vector* v) const {
+    if (Q.cols() == 0) return std::numeric_limits<Scalar>::quiet_NaN();
+    const Matrix B = Q.transpose() * M * Q;
+    const Eigen::EigenSolver<Matrix> es(B, v != nullptr);
+    const Scalar tol = shooting_.multiplier_tolerance;
+    Eigen::Index k = -1;
+    Scalar best = std::numeric_limits<Scalar>::infinity();
+    for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
+      const std::complex<Scalar> mu = es.eigenvalues()[i];
+      if (std::abs(mu.imag()) > tol * std::abs(mu)) continue;
+      if (std::abs(mu.real() - 1) < best) {
+        best = std::abs(mu.real() - 1);
+        k = i;
+      }
+    }
+    if (k < 0) return std::numeric_limits<Scalar>::quiet_NaN();
+    if (v) {
+      *v = Q * es.eigenvectors().col(k).real();
+      const Scalar s = v->cwiseAbs().maxCoeff();
+      if (s > 0) *v /= s;
+    }
+    return es.eigenvalues()[k].real();
+  }
+  // det(B - I) of M restricted to the subspace with orthonormal basis Q (1 for an empty one):
+  // prod (mu_i - 1) over the block's multipliers, whose sign changes exactly when a real
+  // multiplier crosses +1 (a complex pair contributes |mu - 1|^2 > 0).
+  static Scalar det_minus_one(const Matrix& M, const Matrix& Q) {
+    if (Q.cols() == 0) return Scalar(1);
+    return (Q.transpose() * M * Q - Matrix::Identity(Q.cols(), Q.cols())).determinant();
+  }
+  bool symmetric(const State& x) const {
+    Scalar m = 0;
+    for (const auto i : shooting_.periodic_indices(x.size())) m = std::max(m, std::abs(x[i]));
+    return asymmetry(x) <= sym_tol_ * std::max(Scalar(1), m);
+  }
+  Mode mirrored_mode(Scalar t0, const State& x, const Mode& mode) {
+    const Mode m = mode_image_ ? mode_image_(mode) : mode;
+    return start_mode_ ? start_mode_(sys_, t0, x, m) : m;
+  }
+
+  System& sys_;
+  typename Cont::SetParameter set_;
+  typename Cont::PeriodOf period_;
+  Matrix S_;
+  ShootingOptions<Scalar> shooting_;
+  ContinuationOptions<Scalar> opt_;
+  ModeImage mode_image_;
+  typename Cont::StartMode start_mode_;
+  Scalar sym_tol_ = Scalar(1e-6);
+};
+
+template <class System>
+SymmetryBreakingPoint<System> SymmetricBranches<System>::classify(const ContinuationPoint<System>& a,
+                                                                  const ContinuationPoint<System>& b) const {
+  SymmetryBreakingPoint<System> c;
+  const Eigen::Index n = a.orbit.x0.size();
+  check_size("SymmetricBranches::classify", n);
+  check_size("SymmetricBranches::classify", b.orbit.x0.size());
+  for (const auto* pt : {&a, &b})
+    if (!symmetric(pt->orbit.x0)) {
+      c.message = "the orbit at p = " + detail::format_value(pt->parameter) +
+                  " is not symmetric (max |S x0 - x0| = " + detail::format_value(asymmetry(pt->orbit.x0)) +
+                  "): the branch must be a symmetric one";
+      return c;
+    }
+  const Matrix Qm = basis(n, -1), Qp = basis(n, 1);
+  const Matrix &Ma = a.orbit.monodromy, &Mb = b.orbit.monodromy;
+  const Scalar am = det_minus_one(Ma, Qm), bm = det_minus_one(Mb, Qm);
+  const Scalar ap = det_minus_one(Ma, Qp), bp = det_minus_one(Mb, Qp);
+  Scalar ga = 0, gb = 0;
+  if (am * bm <= 0) {
+    c.kind = BifurcationKind::Pitchfork;
+    ga = am;
+    gb = bm;
+  } else if (ap * bp <= 0) {
+    c.kind = BifurcationKind::Fold;
+    ga = ap;
+    gb = bp;
+  } else {
+    c.message = "no real multiplier crosses +1 between the points (det(M - I) on the antisymmetric block " +
+                detail::format_value(am) + ", " + detail::format_value(bm) + "; on the symmetric block " +
+                detail::format_value(ap) + ", " + detail::format_value(bp) + ")";
+    return c;
+  }
+  c.ok = true;
+  c.parameter = ga != gb ? a.parameter + (b.parameter - a.parameter) * ga / (ga - gb) : (a.parameter + b.parameter) / 2;
+  // The orbit nearer the crossing (the smaller |det|) that has a real multiplier in the block.
+  const Matrix& Q = c.kind == BifurcationKind::Pitchfork ? Qm : Qp;
+  const bool a_nearer = std::abs(ga) <= std::abs(gb);
+  const auto* near = a_nearer ? &a : &b;
+  c.multiplier = nearest_plus_one(near->orbit.monodromy, Q, &c.eigenvector);
+  if (!detail::is_finite(c.multiplier)) {
+    near = a_nearer ? &b : &a;
+    c.multiplier = nearest_plus_one(near->orbit.monodromy, Q, &c.eigenvector);
+  }
+  c.orbit = near->orbit;
+  c.tangent = detail::branch_secant(a, b, shooting_);
+  return c;
+}
+
+template <class System>
+SymmetryBreakingPoint<System> SymmetricBranches<System>::locate(const ContinuationPoint<System>& a,
+                                                                const ContinuationPoint<System>& b,
+                                                                Scalar tolerance) {
+  detail::require_positive("SymmetricBranches::locate", "tolerance", tolerance);
+  SymmetryBreakingPoint<System> c = classify(a, b);
+  if (!c.ok || c.kind != BifurcationKind::Pitchfork) return c;
+  if (!(a.orbit.t0 == b.orbit.t0)) {
+    c.ok = false;
+    c.message = "the two points lie on different sections t0 (the continuation moved it between them)";
+    return c;
+  }
+  const Eigen::Index n = a.orbit.x0.size();
+  const Matrix Qm = basis(n, -1);
+  const auto P = shooting_.periodic_indices(n);
+  Shooting<System> shooting(sys_, shooting_);
+  using End = detail::SecantEnd<System>;
+  // The secant on g = det(M - I) over V-, each orbit shot at fixed p from the bracket's nearer
+  // orbit made symmetric.
+  const auto shoot = [&](Scalar p, const End& from, End& e, std::string& why) {
+    State x = from.orbit.x0;
+    const State sx = S_ * x;
+    for (const auto i : P) x[i] = (x[i] + sx[i]) / 2;
+    set_(sys_, p);
+    e.p = p;
+    e.orbit = shooting.forced(from.orbit.mode, from.orbit.t0, x, period_(p));
+    if (!e.orbit.ok()) {
+      why = "the orbit at p = " + detail::format_value(p) + " failed: " + e.orbit.message;
+      return false;
+    }
+    e.g = det_minus_one(e.orbit.monodromy, Qm);
+    return true;
+  };
+  const auto done = [&](const End& e) { return std::abs(nearest_plus_one(e.orbit.monodromy, Qm, nullptr) - 1) <= tolerance; };
+  End found;
+  if (!detail::illinois_secant(End{a.parameter, det_minus_one(a.orbit.monodromy, Qm), a.orbit},
+                               End{b.parameter, det_minus_one(b.orbit.monodromy, Qm), b.orbit}, shoot, done, found,
+                               c.message)) {
+    c.ok = false;
+    return c;
+  }
+  c.located = true;
+  c.parameter = found.p;
+  c.orbit = found.orbit;
+  c.multiplier = nearest_plus_one(found.orbit.monodromy, Qm, &c.eigenvector);
+  return c;
+}
+
+template <class System>
+ContinuationResult<System> SymmetricBranches<System>::asymmetric_branch(const SymmetryBreakingPoint<System>& pitchfork,
+                                                                        Scalar offset) {
+  static const std::string where = "SymmetricBranches::asymmetric_branch";
+  if (!pitchfork.ok || pitchfork.kind != BifurcationKind::Pitchfork)
+    throw std::invalid_argument(where + ": pitchfork must be an ok symmetry-breaking pitchfork");
+  detail::require_finite(where, "offset", offset);
+  if (offset == 0) throw std::invalid_argument(where + ": offset must not be 0");
+  ContinuationResult<System> result;
+  result.status = ContinuationStatus::StartFailed;
+  const auto np = pitchfork.eigenvector.size();
+  // Direction: the antisymmetric Floquet vector without its component along the symmetric
+  // branch's tangent (none when S is orthogonal: V- is then orthogonal to the symmetric states).
+  Vector dir(np + 1);
+  dir.head(np) = pitchfork.eigenvector;
+  dir[np] = 0;
+  if (pitchfork.tangent.size() == np + 1) dir -= dir.dot(pitchfork.tangent) * pitchfork.tangent;
+  if (!(dir.norm() > 0)) {
+    result.message = "the Floquet vector is along the symmetric branch";
+    return result;
+  }
+  dir.normalize();
+  Scalar p = pitchfork.parameter;
+  std::string why;
+  const PeriodicOrbit<System> orbit = detail::start_on_branch<System>(sys_, set_, period_, 1, shooting_, pitchfork.orbit,
+                                                                      pitchfork.parameter, dir, offset, p, why);
+  if (!orbit.ok()) {
+    result.message = "the first asymmetric orbit: " + why;
+    return result;
+  }
+  Shooting<System> shooting(sys_, shooting_);
+  if (!(asymmetry(orbit.x0) > 100 * shooting.tolerance_at(orbit.x0))) {
+    result.message = "the first asymmetric orbit at p = " + detail::format_value(p) +
+                     " is the symmetric orbit (raise the offset)";
+    return result;
+  }
+  return detail::continue_new_branch<System>(sys_, set_, period_, shooting_, opt_, start_mode_, orbit, p,
+                                             pitchfork.parameter, "asymmetric orbit");
+}
+
+template <class System>
+ContinuationPoint<System> SymmetricBranches<System>::image(const ContinuationPoint<System>& point) {
+  check_size("SymmetricBranches::image", point.orbit.x0.size());
+  ContinuationPoint<System> out = point;
+  const State x = S_ * point.orbit.x0;
+  set_(sys_, point.parameter);
+  const Mode m = mirrored_mode(point.orbit.t0, x, point.orbit.mode);
+  Shooting<System> shooting(sys_, shooting_);
+  out.orbit = shooting.forced(m, point.orbit.t0, x, point.orbit.period);
+  return out;
+}
+
+}  // namespace stickslip
