@@ -4,7 +4,7 @@
 /// orbits of the damped blade followed in the excitation frequency by pseudo-arclength
 /// continuation (stickslip::Continuation) at each preload, with stability, regime and tip
 /// amplitude per point, next to the two linear limits in closed form (all dampers stuck; no
-/// friction, mu = 0); and the optimal preload (`--optimise-preload`). docs/steady_state.md.
+/// friction, mu = 0); and the optimal preload (`--optimise-preload`). docs/howto/frequency_response.md.
 
 #include "blade_regime.hpp"
 #include "frc_peak.hpp"
@@ -138,6 +138,9 @@ struct FrcPoint {
   int iterations = 0;        ///< corrector iterations (orbit runs) of the point
   double residual = 0;       ///< |x_P(T) - x_P(0)| max norm
   double cpu_seconds = 0;    ///< CPU time since the previous point (or the branch start)
+  /// The branch's (or its part's) CPU seconds so far and the estimate of what remains to the
+  /// end of its range (stickslip::ContinuationProgress); -1: not from a continuation.
+  double branch_cpu_seconds = -1, remaining_seconds = -1;
   /// 0: a point of the branch; k > 0: a separate segment of the curve, not connected to the
   /// branch - with --frc-parts, part k's own branch, which the joined branch never reached
   /// (stickslip::SplitContinuationResult::dropped: an earlier part ended first, e.g. at a
@@ -275,7 +278,7 @@ struct FrcSettings {
   int transient_periods = 60;   ///< before shooting the start orbit at f_lo
   /// The monodromy by finite differences (2 n plain periods) instead of the variational run
   /// (with the model's jacobian and Phi out of the error control: as cheap at 1 N, 3x cheaper
-  /// stuck, and accurate where the differences' h = 1e-6 is 1 % of the state; docs/steady_state.md
+  /// stuck, and accurate where the differences' h = 1e-6 is 1 % of the state; docs/measurements/steady_state_cost.md
   /// "Cost").
   bool finite_difference_monodromy = false;
   /// Newton iterations of the start orbit's shooting (ShootingOptions::max_iterations). From a
@@ -286,10 +289,10 @@ struct FrcSettings {
   /// one Continuation). Each part starts from its own transient and shooting. Default 4, also on
   /// fewer cores: the cost per point is uneven (twice the average over the resonance), and
   /// parts of equal frequency range balance better when there are more of them than cores
-  /// (docs/steady_state.md, "Where the 1 N branch ends": 2 cores, 2 parts 7.2 s, 4 parts 6.0 s).
+  /// (docs/measurements/steady_state_cost.md, "Where the 1 N branch ends": 2 cores, 2 parts 7.2 s, 4 parts 6.0 s).
   int parts = 4;
   /// Restarts past a stall: when a branch ends with step_too_small short of f_hi (a nonsmooth
-  /// point the corrector cannot pass, docs/steady_state.md), a new segment starts from its own
+  /// point the corrector cannot pass, docs/howto/frequency_response.md), a new segment starts from its own
   /// transient and shooting at restart_gap (a fraction of the range) beyond the farthest point
   /// computed, up to this many times per preload. 0: none.
   int restarts = 8;
@@ -315,7 +318,7 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
                                                                                      : sys.linear_size());
   if (fd) opt.monodromy = stickslip::MonodromyMethod::FiniteDifference;
   // The variational monodromy on the steps of the plain run (Phi out of the error control):
-  // 4.5-5.6x fewer steps, multipliers unchanged to 8 digits at 1 N (docs/steady_state.md "Cost").
+  // 4.5-5.6x fewer steps, multipliers unchanged to 8 digits at 1 N (docs/measurements/steady_state_cost.md "Cost").
   opt.control_sensitivities = false;
   // The runs' global error over a period of ~8500 steps at rtol 1e-10 is ~1e-9 of the state:
   // a residual of 1e-9 (the default) is at that floor and stalls the corrector; 1e-7 is far
@@ -323,7 +326,7 @@ inline stickslip::ShootingOptions<double> blade_shooting_options(const BladeScen
   opt.tolerance = 1e-7;
   // With the variational monodromy the runs need only be ~100x below that tolerance: rtol 1e-9
   // (atol 1e-11) gives the same orbits as rtol 1e-13 to the Newton tolerance's own ~2e-9 of the
-  // state and the multipliers to 9 digits, in ~2/3 of the time of rtol 1e-10 (docs/steady_state.md,
+  // state and the multipliers to 9 digits, in ~2/3 of the time of rtol 1e-10 (docs/measurements/steady_state_cost.md,
   // "Integration tolerance of the blade's orbits"). Finite differences of plain runs (h = 1e-6 of
   // the state) keep rtol 1e-10: their columns divide the runs' error by h.
   if (!fd) {
@@ -391,7 +394,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // The variational monodromy; with finite_difference_monodromy, differences where the dampers
   // slide but still the variational one for a branch that starts stuck all period (a family:
   // its multipliers 1 are exact there, the differences' noise ~rtol / fd_step hides them;
-  // docs/steady_state.md "The blade scene").
+  // docs/howto/frequency_response.md "The blade scene").
   auto opt = blade_shooting_options(*scene.system, s.finite_difference_monodromy);
   opt.max_iterations = s.max_newton_iterations;
   add_tip_output(scene, opt);
@@ -426,9 +429,12 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   // Where the stick fraction changes (an event appears) the corrector can land on another
   // orbit, several steps away (seen at 1 N near 16 Hz): reject such a point and halve the step.
   co.max_corrector_distance = 2;
-  // Move the section t0 away from an event that comes within 2 % of a period of it: an event
-  // crossing t0 stalled the 1 N branch at 30.74 Hz (docs/steady_state.md, "Moving the section").
-  co.section_margin = 0.02;
+  // (section_margin: the default 0.02 moves the section t0 away from an event that comes within
+  // 2 % of a period of it: an event crossing t0 stalled the 1 N branch at 30.74 Hz,
+  // docs/measurements/steady_state_cost.md, "Moving the section".)
+  // The progress of the branch (of its part: each part's thread) just before its on_point.
+  static thread_local stickslip::ContinuationProgress last_progress;
+  co.progress = [](const stickslip::ContinuationProgress& pr) { last_progress = pr; };
   // Chord iterations first: plain periods (~14x cheaper than a variational one here) with the
   // last point's Jacobian; one variational period then confirms the point.
   co.chord_iterations = 4;
@@ -460,6 +466,8 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     f.regime = common ? to_string(*common) : std::string(to_string(*r[0])) + " / " + to_string(*r[1]);
     f.iterations = pt.orbit.iterations;
     f.residual = pt.orbit.residual;
+    f.branch_cpu_seconds = last_progress.cpu_seconds;
+    f.remaining_seconds = last_progress.remaining_seconds;
     const double now = stickslip::detail::thread_cpu_seconds();
     f.cpu_seconds = now - cpu_mark;
     cpu_mark = now;
@@ -858,10 +866,14 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
                 stuck_hz.empty() ? 0.0 : stuck_hz[0], free_hz.empty() ? 0.0 : free_hz[0]);
     int count = 0;
     const auto progress = [&](const FrcPoint& f) {
-      std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s%s\n", n0,
+      const std::string cost = f.remaining_seconds >= 0 ? "  (" + std::to_string(static_cast<int>(f.branch_cpu_seconds)) +
+                                                              " s so far, ~" + std::to_string(static_cast<int>(f.remaining_seconds + 0.5)) +
+                                                              " s to go)"
+                                                        : std::string();
+      std::printf("frc N0 %g N: %3d  f %7.3f Hz  tip %.4e m  %-8s %-22s stick %.2f/%.2f  runs %d  %.2f s%s%s\n", n0,
                   ++count, f.omega / (2 * M_PI), f.tip_amplitude,
                   f.stable ? "stable" : f.instability.c_str(), f.regime.c_str(), f.stick_fraction[0],
-                  f.stick_fraction[1], f.iterations, f.cpu_seconds,
+                  f.stick_fraction[1], f.iterations, f.cpu_seconds, cost.c_str(),
                   f.period > 1 ? ("  period " + std::to_string(f.period) + " T").c_str() : "");
       std::fflush(stdout);
     };

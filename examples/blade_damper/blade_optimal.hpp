@@ -6,7 +6,7 @@
 /// N0, then golden sections in log N0 and, at each N0, a coarse frequency grid and a golden
 /// section between the frictionless and the all-stuck lowest resonances. Each amplitude is one orbit found by shooting from the
 /// end of a transient (or, when shooting fails, a longer transient's last period).
-/// docs/steady_state.md.
+/// docs/howto/frequency_response.md.
 
 #include "blade_frc.hpp"
 #include "resonance_search.hpp"

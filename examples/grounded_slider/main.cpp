@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <complex>
+#include <mutex>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -145,9 +146,20 @@ int main(int argc, char** argv) try {
   co.initial_step = 0.005;
   co.max_step = 0.02;
   co.max_points = 2000;
-  co.section_margin = 0.02;  // keep the section t0 away from the slider's switches
+  // (section_margin: the default 0.02 keeps the section t0 away from the slider's switches)
   co.max_corrector_distance = 2;
   co.chord_iterations = 4;
+  // A line per point: the part's CPU so far and its estimate of what remains (each part calls
+  // this from its own thread).
+  std::mutex print_mutex;
+  co.progress = [&print_mutex, w1](const ContinuationProgress& pr) {
+    std::lock_guard<std::mutex> lock(print_mutex);
+    std::printf("grounded_slider: point %d at %.3f Hz (%.0f %% of its part), %.2f s CPU", pr.points,
+                pr.parameter * w1 / (2 * kPi), 100 * pr.covered, pr.cpu_seconds);
+    if (pr.remaining_seconds >= 0) std::printf(", ~%.1f s to go", pr.remaining_seconds);
+    std::printf("\n");
+    std::fflush(stdout);
+  };
   auto set_parameter = [&scene, w1](System& sys, double p) { sys = scene.system(p * w1); };
   auto period = [w1](double p) { return 2 * kPi / (p * w1); };
   SplitContinuation<System> split(ptrs, set_parameter, period, so, co);

@@ -48,6 +48,8 @@ struct type_caster<stickslip::detail::TaggedIndex<Tag>> {
 };
 }  // namespace pybind11::detail
 
+void bind_firstuser(py::module_& m);  // firstuser_bindings.cpp: probes, orbit signals, progress
+
 namespace {
 
 using namespace stickslip;
@@ -1523,6 +1525,7 @@ struct PyOrbit {
   std::vector<Transition> events;
   std::vector<double> stick_fractions;  // per damper (orbit_contact_statistics)
   std::vector<int> switches;            // per damper
+  std::vector<OrbitSignal<double>> outputs;  // the outputs= rows over the period
 };
 
 /// The C++ orbit as PyOrbit (no Python objects: callable with the GIL released).
@@ -1543,6 +1546,7 @@ PyOrbit to_py(const PeriodicOrbit<Sys>& orbit) {
   out.stable = orbit.floquet.stable;
   out.instability = orbit.floquet.instability;
   out.amplitudes = orbit.amplitudes;
+  out.outputs = orbit.outputs;
   for (const auto& e : orbit.events) out.events.push_back(Transition{e.t, to_list(e.from), to_list(e.to)});
   for (Index i = 0; i < orbit.mode.size(); ++i) {
     const auto c = orbit_contact_statistics(orbit, i);
@@ -1597,6 +1601,25 @@ std::vector<Index> periodic_set(const Sys& system, const std::optional<std::vect
     throw std::invalid_argument(where + ": periodic must not be empty (None: the default q, q', x_d, x_d')");
   detail::require_indices(where, "periodic", *periodic, system.state_size());
   return *periodic;
+}
+
+/// outputs= and output_harmonics= of find_periodic_orbit and continue_orbits into `opt` (samples
+/// raised to 2 H + 1 where below), and progress= (a callable or None) called with the GIL.
+inline void set_outputs_and_progress(ShootingOptions<double>& opt, const std::optional<Eigen::MatrixXd>& outputs,
+                                     int output_harmonics, const py::object& progress, const std::string& where) {
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw std::invalid_argument(where + ": progress must be None or a callable progress(report)");
+  if (output_harmonics < 0) detail::throw_invalid(where, "output_harmonics must be >= 0", output_harmonics);
+  if (outputs) {
+    opt.outputs = *outputs;
+    opt.output_harmonics = output_harmonics;
+    if (opt.samples_per_period <= 2 * output_harmonics) opt.samples_per_period = 2 * output_harmonics + 1;
+  }
+  if (!progress.is_none())
+    opt.progress = [&progress](const ShootingProgress& p) {
+      py::gil_scoped_acquire gil;
+      progress(p);
+    };
 }
 
 /// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
@@ -1755,10 +1778,12 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       "find_periodic_orbit",
       [](Py& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
-         double rtol, double atol, long max_steps) {
+         double rtol, double atol, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
+         const py::object& progress) {
         return with_system(system, [&](SignalCheck& signals) {
           ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
                                                          atol, max_steps, "find_periodic_orbit");
+          set_outputs_and_progress(opt, outputs, output_harmonics, progress, "find_periodic_orbit");
           opt.interrupt = [&signals] { return signals(); };
           State x = x0 ? *x0 : system.initial_state();
           Mode md = mode ? to_mode(*mode) : system.requested_mode();
@@ -1770,7 +1795,8 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
       py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
       py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
-      py::arg("max_steps") = StepperOptions<double>{}.max_steps, doc);
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps, py::arg("outputs") = py::none(),
+      py::arg("output_harmonics") = 3, py::arg("progress") = py::none(), doc);
 }
 
 /// continue_orbits for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
@@ -1785,8 +1811,11 @@ void def_continue_orbits(py::module_& m, const char* doc) {
          double rtol, double atol, double initial_step, double min_step, double max_step, int max_points,
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
          int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
-         const py::object& start, long max_steps) {
+         const py::object& start, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
+         const py::object& progress) {
         static const std::string where = "continue_orbits";
+        if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+          throw std::invalid_argument(where + ": progress must be None or a callable progress(report)");
         if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
         if (parts > max_split_parts())
           detail::throw_invalid(where,
@@ -1822,6 +1851,11 @@ void def_continue_orbits(py::module_& m, const char* doc) {
         co.growth = growth;
         co.section_margin = section_margin;
         co.chord_iterations = chord_iterations;
+        if (!progress.is_none())
+          co.progress = [&progress](const ContinuationProgress& pr) {
+            py::gil_scoped_acquire gil;
+            progress(pr);
+          };
         const ContinuationCallbacks<Py> cb{&parameter, &period, &start_mode, &on_point, &start};
         ShootingOptions<double> opt;
         State x;
@@ -1832,6 +1866,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
         std::vector<Py> copies;
         PyContinuation out = with_system(system, [&](SignalCheck& signals) {
           opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps, where);
+          set_outputs_and_progress(opt, outputs, output_harmonics, py::none(), where);
           x = x0 ? *x0 : system.initial_state();
           md = mode ? to_mode(*mode) : system.requested_mode();
           check_start(system, md, x, where);
@@ -1891,10 +1926,10 @@ void def_continue_orbits(py::module_& m, const char* doc) {
       py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
       py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12, py::arg("initial_step") = 0.01, py::arg("min_step") = 1e-6,
       py::arg("max_step") = 0.1, py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8,
-      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.0,
+      py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.02,
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
       py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
-      doc);
+      py::arg("outputs") = py::none(), py::arg("output_harmonics") = 3, py::arg("progress") = py::none(), doc);
 }
 
 void bind_steady_state(py::module_& m) {
@@ -1931,14 +1966,20 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("amplitudes", &PyOrbit::amplitudes, "max |x_i| over the orbit (the periodic components)")
       .def_readonly("events", &PyOrbit::events, "the contact switches of one period")
       .def_readonly("stick_fractions", &PyOrbit::stick_fractions, "per damper: time stuck / T")
-      .def_readonly("switches", &PyOrbit::switches, "per damper: its contact-state changes in one period");
+      .def_readonly("switches", &PyOrbit::switches, "per damper: its contact-state changes in one period")
+      .def_readonly("outputs", &PyOrbit::outputs,
+                    "per row of outputs= (e.g. probe_rows): an OrbitSignal over the orbit's period (min, max, "
+                    "amplitude, mean, harmonics), from the run that closed the orbit");
   def_find_periodic_orbit<PySystem>(
       m,
       "Forced periodic orbit of the given period by shooting from (mode, t0, x0) (default: the system's initial "
       "state), with its monodromy and Floquet multipliers (Shooting::forced, docs/steady_state.md). periodic: the "
       "state indices that must repeat (default: q, q', x_d, x_d', the first 2n + 2D); max_steps: step attempts "
       "allowed per orbit run (a run beyond it fails: IntegrationFailed). The GIL is released; Ctrl-C stops the "
-      "call (KeyboardInterrupt).");
+      "call (KeyboardInterrupt). outputs: rows c (numpy, one column per state component, e.g. probe_rows(...)) "
+      "whose y = c . x the orbit reports over its period (PeriodicOrbit.outputs, output_harmonics harmonics); "
+      "progress(report): called after every Newton iteration with a ShootingProgress (residual, CPU seconds, an "
+      "estimate of those left). A failure's message names what stalled Newton and the option that addresses it.");
   def_find_periodic_orbit<PyContactSystem>(
       m,
       "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
@@ -1995,8 +2036,8 @@ void bind_steady_state(py::module_& m) {
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
       "orbit is shot from (mode, t0, x0) (default: the system's initial state). The arclength norm is Euclidean in "
-      "(x_P, p): scale p so that both are of order one. section_margin > 0 moves the section t0 away from an "
-      "event within that fraction of a period; chord_iterations > 0 lets the corrector first iterate on plain runs "
+      "(x_P, p): scale p so that both are of order one. section_margin (default 0.02; 0: a fixed t0) moves the "
+      "section t0 away from an event within that fraction of a period; chord_iterations > 0 lets the corrector first iterate on plain runs "
       "with the last point's Jacobian (ContinuationOptions). parts = n > 1 follows the branch in n parts at once "
       "(SplitContinuation: part k starts at the k-th of n equal cuts of [p0, p_end], on its own thread and a copy "
       "of the system, and the parts are joined where one runs into the next one's start); start(system, p) -> "
@@ -2004,7 +2045,12 @@ void bind_steady_state(py::module_& m) {
       "parts find their points (not in branch order) and Branch.parts tells what each part did; parts is at most "
       "4 x the hardware threads. max_steps: step attempts allowed per orbit run. A Python exception raised by a "
       "callable ends the run and propagates. The GIL is released during the run and re-acquired for each "
-      "callable; Ctrl-C stops the call (KeyboardInterrupt).");
+      "callable; Ctrl-C stops the call (KeyboardInterrupt). outputs: rows c (numpy, one column per state "
+      "component, e.g. probe_rows(...)) whose y = c . x every orbit reports over its period as "
+      "PeriodicOrbit.outputs (OrbitSignal, output_harmonics harmonics); progress(report): called after each point "
+      "with a ContinuationProgress (CPU seconds so far, an estimate of those left). A failed branch's message names "
+      "what stalled the corrector (an event at the period start, a grazing, a discontinuity of the period map) and "
+      "the option that addresses it.");
   def_continue_orbits<PyContactSystem>(
       m,
       "A ContactSystem's branch, as above: parameter(system, p) returns the ContactSystem at p (the same number of "
@@ -2106,4 +2152,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_trade_study(m);
   bind_steady_state(m);
   bind_auto(m);
+  bind_firstuser(m);
 }

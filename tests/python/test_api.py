@@ -78,17 +78,24 @@ def undocumented(obj, where, missing):
                 missing.append(path)
 
 
-def test_every_public_class_function_property_and_enum_value_has_a_docstring():
+def missing_docstrings(module):
+    """The public names of `module` (recursively: classes' members, enum values) without a
+    docstring (also used by scripts/python_api_reference.py)."""
     missing = []
-    for name in dir(ss):
+    for name in dir(module):
         if name.startswith("_"):
             continue
-        obj = getattr(ss, name)
+        obj = getattr(module, name)
         if inspect.isclass(obj):
             undocumented(obj, name, missing)
         elif callable(obj):
             if not all(own_text(obj.__doc__)):
                 missing.append(name)
+    return missing
+
+
+def test_every_public_class_function_property_and_enum_value_has_a_docstring():
+    missing = missing_docstrings(ss)
     assert not missing, "without a docstring: " + ", ".join(missing)
 
 

@@ -35,8 +35,9 @@ struct ContinuationProgress {
   double cpu_seconds = 0;     ///< CPU seconds since the run started
   double seconds_per_point = 0;  ///< CPU seconds of the newest point (its corrector and retries)
   /// Estimated CPU seconds to the end of the range: cpu_seconds (1 - covered) / covered, at most
-  /// the mean cost per point times the points left before max_points. An estimate, not a bound:
-  /// steps shrink where the branch is hard (folds, stick phases opening).
+  /// the mean cost per point times the points left before max_points; -1 (not known) while no
+  /// part of the range is covered (the start point). An estimate, not a bound: steps shrink where
+  /// the branch is hard (folds, stick phases opening).
   double remaining_seconds = 0;
 };
 
@@ -59,11 +60,12 @@ inline double newton_remaining(double residual, double previous, double toleranc
   return std::max(0.0, k) * seconds_per_iteration;
 }
 
-/// The remaining-cost estimate of a branch (ContinuationProgress::remaining_seconds).
+/// The remaining-cost estimate of a branch (ContinuationProgress::remaining_seconds; -1 while
+/// nothing is covered).
 inline double branch_remaining(double covered, double cpu_seconds, int points, int max_points) {
+  if (!(covered > 0)) return -1;
   const int done = std::max(points - 1, 1);  // points after the start
   const double by_points = cpu_seconds / done * std::max(max_points - points, 0);
-  if (!(covered > 0)) return by_points;
   return std::min(cpu_seconds * (1 - std::min(covered, 1.0)) / covered, by_points);
 }
 
