@@ -3,6 +3,7 @@
 // rows do not depend on the thread count, and a lumped ring of coupled oscillators (one mode per
 // blade, the dampers stuck into the coupling) stays below Whitehead's bound (1 + sqrt N) / 2.
 
+#include "contact/contact_test_util.hpp"
 #include "disk/disk_samples.hpp"
 
 #include <Eigen/Dense>
@@ -99,3 +100,76 @@ TEST(DiskMistuningStudy, LumpedRingStaysBelowWhiteheadsBound) {
 }
 
 }  // namespace mistuning_study_test
+
+namespace disk_study_inputs_test {
+
+using namespace disk_samples;
+
+// Bad input to the dampers, the shift, the travelling-wave solvers and the study is refused
+// naming the parameter.
+TEST(DiskStudyInputs, BadInputIsRefusedNamingTheParameter) {
+  using contact_test::expect_invalid_argument;
+  const Disk disk(4, kPitch, builder(), SectorCoupling<double>::springs(1e4, 1e4, 10.0));
+  NeighbourDamperSpec<double> spec;
+  spec.mass = 0.01;
+  spec.inertia = 1e-7;
+  spec.preload = 10.0;
+  expect_invalid_argument([&] { neighbour_wedge_dampers(disk, {MemberId(7), 0.0}, {kPlatformMember, 0.0}, spec); },
+                          {"neighbour_wedge_dampers", "right_wing.member"});
+  spec.left.angle = 2.0;
+  expect_invalid_argument([&] { neighbour_wedge_dampers(disk, {kPlatformMember, kPlatform}, {kPlatformMember, 0.0}, spec); },
+                          {"wedge_damper", "left.angle"});
+  // The annulus basis with one mode of the h = 1 pair dropped: not closed under the shift.
+  CyclicModalOptions<double> co;
+  co.num_modes = 1;
+  const auto cm = compute_cyclic_modes(disk, co);
+  const ModalBasis<double> whole = annulus_basis(disk, cm);
+  Eigen::Index twin = 0;
+  while (twin + 1 < whole.size() && whole.omega()(twin) != whole.omega()(twin + 1)) ++twin;
+  ASSERT_LT(twin + 1, whole.size());
+  std::vector<Eigen::Index> keep;
+  for (Eigen::Index j = 0; j < whole.size(); ++j)
+    if (j != twin + 1) keep.push_back(j);
+  const ModalBasis<double> split(whole.omega()(keep), whole.phi()(Eigen::all, keep), disk.annulus_dofs(),
+                                 disk.frame().id(), 0);
+  ModalOptions<double> mo;
+  mo.num_modes = 2;
+  mo.solver = ModalSolver::Dense;
+  expect_invalid_argument([&] { modal_cyclic_shift(disk, split, 1); }, {"modal_cyclic_shift", "basis"});
+  expect_invalid_argument([&] { modal_cyclic_shift(disk, whole, 4); }, {"modal_cyclic_shift", "sigma"});
+  const Disk mistuned(4, kPitch, builder(), SectorCoupling<double>::springs(1e4, 1e4, 10.0), {0.0, 0.01, 0.0, 0.0});
+  const ModalBasis<double> mb = compute_modes(mistuned.assemble(), mo);
+  expect_invalid_argument([&] { modal_cyclic_shift(mistuned, mb, 1); }, {"modal_cyclic_shift", "disk"});
+  // The orthogonality the solver relies on holds for whole families (round-off).
+  const Eigen::MatrixXd S = modal_cyclic_shift(disk, whole, 1);
+  EXPECT_LE((S.transpose() * S - Eigen::MatrixXd::Identity(S.rows(), S.cols())).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_THROW(engine_order_symmetry(1, 1), std::invalid_argument);
+
+  using System = ContactSystem<double>;
+  const std::function<System(double)> make = [&](double W) {
+    return System(disk.frame(), whole, {}, engine_order_loads(disk, kBladeMember, kBlade, LoadDirection::GlobalX, 1.0, W, 1));
+  };
+  const std::function<TravellingWaveShift<double>(const System&)> shift = [&](const System& s) {
+    return travelling_wave_shift(disk, whole, s, 1);
+  };
+  const System sys = make(300.0);
+  expect_invalid_argument([&] { travelling_wave_sweep<System>(make, shift, {}, sys.requested_mode(), sys.initial_state()); },
+                          {"travelling_wave_sweep", "omegas"});
+  expect_invalid_argument([&] { travelling_wave_sweep<System>(make, shift, {300.0, -1.0}, sys.requested_mode(), sys.initial_state()); },
+                          {"travelling_wave_sweep", "omegas[1]"});
+  System s2 = make(300.0);
+  TravellingWaveShooting<System> tw(s2, shift(s2));
+  expect_invalid_argument([&] { tw.solve(s2.requested_mode(), 0.0, s2.initial_state(), -1.0); },
+                          {"TravellingWaveShooting", "period"});
+  const std::function<BladePeak<double>(const std::vector<double>&)> none;
+  expect_invalid_argument([&] { mistuning_study<double>(4, 0.01, 2, 1, none); }, {"mistuning_study", "peak"});
+  const std::function<BladePeak<double>(const std::vector<double>&)> one = [](const std::vector<double>&) {
+    return BladePeak<double>{1.0, 0};
+  };
+  expect_invalid_argument([&] { mistuning_study<double>(4, -0.01, 2, 1, one); }, {"mistuning_study", "sigma"});
+  expect_invalid_argument([&] {
+    engine_order_blade_peak(disk, NodeId(3), Dof::X, 1.0, 1, kTip, Dof::X, std::vector<double>{300.0}, 0.01, 4);
+  }, {"engine_order_blade_peak", "load_node"});  // node 3: the clamped root
+}
+
+}  // namespace disk_study_inputs_test
