@@ -1248,16 +1248,16 @@ void bind_simulate(py::module_& m) {
   using Options = RunOptions<double>;
   using Stepper = StepperOptions<double>;
   py::class_<Options> options(m, "RunOptions",
-                              "Integrator (rk4 | dopri5 | rosenbrock23 | exponential) and stepper options: the "
+                              "Integrator (auto | rk4 | dopri5 | rosenbrock23 | exponential) and stepper options: the "
                               "fields of C++'s RunOptions and of its StepperOptions `stepper`, flattened "
                               "(docs/ode.md).");
-  options.def(py::init(&make_run_options), py::arg("integrator") = "dopri5",
-              "RunOptions(integrator=\"dopri5\", **options): keywords are the stepper options below and "
+  options.def(py::init(&make_run_options), py::arg("integrator") = "auto",
+              "RunOptions(integrator=\"auto\", **options): keywords are the stepper options below and "
               "check_stability_limit (TypeError for a wrong type, ValueError for an unknown name).");
   options.def_property(
       "integrator", [](const Options& o) { return std::string(to_string(o.integrator)); },
       [](Options& o, const std::string& name) { o.integrator = parse_integrator(name); },
-      "the integrator's name: rk4, dopri5 (default), rosenbrock23 or exponential");
+      "the integrator's name: auto (default, as C++), rk4, dopri5, rosenbrock23 or exponential");
   const auto stepper_field = [&options](const char* name, auto field, const char* doc) {
     using T = std::decay_t<decltype(std::declval<Stepper&>().*field)>;
     options.def_property(
