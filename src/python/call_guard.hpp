@@ -62,6 +62,8 @@ using PySystem = Locked<System>;
 using PyContactSystem = Locked<stickslip::ContactSystem<double>>;
 /// The Python BodyContactSystem: a ContactSystem over contacts of rigid-body points.
 using PyBodyContactSystem = Locked<stickslip::ContactSystem<double, stickslip::BodyContact<double>>>;
+/// The Python MixedContactSystem: a ContactSystem over contacts of both kinds (AnyContact).
+using PyMixedContactSystem = Locked<stickslip::ContactSystem<double, stickslip::AnyContact<double>>>;
 
 /// How often a call with the GIL released looks for signals (and how long a wait for a system's
 /// lock lasts between two looks): often enough for Ctrl-C to feel immediate, rarely enough that

@@ -57,12 +57,14 @@ using Index = Eigen::Index;
 using System = FrictionDampedSystem<double>;
 using CSystem = ContactSystem<double>;
 using BSystem = ContactSystem<double, BodyContact<double>>;
+using MSystem = ContactSystem<double, AnyContact<double>>;
 using State = System::State;
 using Mode = System::Mode;
 using Law = FrictionLawVariant<double>;
 using stickslip_python::copy_of;
 using stickslip_python::PyBodyContactSystem;
 using stickslip_python::PyContactSystem;
+using stickslip_python::PyMixedContactSystem;
 using stickslip_python::PySystem;
 using stickslip_python::SignalCheck;
 using stickslip_python::with_system;
@@ -161,7 +163,7 @@ struct Run {
   StepperStats stats;
   double E0 = 0;
   std::optional<System::EnergyBalance> energy;          // a FrictionDampedSystem's audit
-  std::optional<std::variant<CSystem::EnergyBalance, BSystem::EnergyBalance>> contact_energy;  // a ContactSystem's
+  std::optional<std::variant<CSystem::EnergyBalance, BSystem::EnergyBalance, MSystem::EnergyBalance>> contact_energy;  // a ContactSystem's
   std::vector<double> sample_t;
   std::vector<State> samples;  // empty unless record_states
   std::vector<std::vector<ContactState>> sample_modes;
@@ -830,7 +832,21 @@ void bind_system(py::module_& m) {
       "structure; modal damping is left out (docs/model.md).");
 }
 
-/// The Python class of ContactSystem<double, Contact> (Py: PyContactSystem or PyBodyContactSystem):
+/// A system's contacts as Python gets them: a single-kind list as it is.
+template <class Contact>
+const std::vector<Contact>& python_contacts(const std::vector<Contact>& contacts) {
+  return contacts;
+}
+/// A mixed scene's contacts: each the PointContact or BodyContact it holds.
+std::vector<AnyContact<double>::Kind> python_contacts(const std::vector<AnyContact<double>>& contacts) {
+  std::vector<AnyContact<double>::Kind> out;
+  out.reserve(contacts.size());
+  for (const auto& c : contacts) out.push_back(c.kind);
+  return out;
+}
+
+/// The Python class of ContactSystem<double, Contact> (Py: PyContactSystem, PyBodyContactSystem or
+/// PyMixedContactSystem):
 /// its nested ContactEvent and EnergyBalance and every member but the constructor, which differs
 /// (a BodyContactSystem takes the bodies).
 template <class Py>
@@ -872,7 +888,8 @@ py::class_<Py> bind_contact_system(py::module_& m, const char* name, const char*
             return s.body_offset(b);
           },
           py::arg("b"), "Index of body b's x in the state (y, theta follow; their rates num_coordinates() later).")
-      .def("contacts", [](const Py& s) { return s.contacts(); }, "The contacts (copies).")
+      .def("contacts", [](const Py& s) { return python_contacts(s.contacts()); },
+           "The contacts (copies; of a MixedContactSystem each a PointContact or a BodyContact).")
       .def("bodies", [](const Py& s) { return s.bodies(); }, "The rigid bodies (copies).")
       .def("loads", [](const Py& s) { return s.loads(); }, "The point loads (copies).")
       .def("options", [](const Py& s) { return s.options(); }, "The ContactSystemOptions (a copy).")
@@ -1157,6 +1174,9 @@ void bind_bodies(py::module_& m) {
           "the friction law (CoulombLaw, StribeckLaw or RegularisedLaw)")
       .def_readwrite("restitution", &BContact::restitution, "e in [0, 1] of a landing (0: perfectly plastic)")
       .def_readwrite("initial_gap", &BContact::initial_gap, "g0 [m] >= 0: the gap with every coordinate zero")
+      .def_readwrite("contact_point", &BContact::contact_point,
+                     "ContactPoint of side b: Fixed (default) at b, or Moving along b's member with the sliding "
+                     "(X' = v; needs b on the structure)")
       .def_readwrite("initial_state", &BContact::initial_state,
                      "state at the start of a run: Stick (default), SlipPositive, SlipNegative or Separated")
       .def("law", [](const BContact& c) { return c.law(); }, "The friction law.")
@@ -1204,6 +1224,51 @@ void bind_bodies(py::module_& m) {
           "Assembles the contacts' rows from `frame` and `basis` (a basis of that frame). ValueError naming the body "
           "or contact and the parameter: a non-positive mass or inertia, a non-unit normal, a restitution outside "
           "[0, 1], a contact whose a.body names no body, ...");
+
+  using DamperBody = PointDamperBody<double>;
+  py::class_<DamperBody>(m, "PointDamperBody",
+                         "The paper's damper as a rigid body and a BodyContact (point_damper_body), to pass to "
+                         "BodyContactSystem or MixedContactSystem.")
+      .def(py::init<>(), "An empty damper body (point_damper_body() builds one).")
+      .def_readwrite("body", &DamperBody::body,
+                     "the RigidBody: mass s m, spring s k to ground along the member's u, the load N0 towards the "
+                     "member")
+      .def_readwrite("contact", &DamperBody::contact,
+                     "the BodyContact of its centre of mass on the member point (unilateral normal; side b Moving "
+                     "or Fixed as the damper's contact_point)");
+  m.def(
+      "point_damper_body",
+      [](const FrameModel<double>& frame, Index body, const System::Damper& damper) {
+        return point_damper_body(frame, body, damper);
+      },
+      py::arg("frame"), py::arg("body"), py::arg("damper"),
+      "The PointDamper `damper` on `frame` as body number `body` of a scene (PointDamperBody): the body on its "
+      "spring pressed by its preload, and a contact whose side b moves along the member with the sliding (X' = V) "
+      "unless damper.contact_point is Fixed; the normal is unilateral (the contact opens at N = 0 and lands with "
+      "damper.restitution) (docs/contacts.md). ValueError naming the parameter: a member not in the frame, "
+      "normal_load Constant, start_end or finish_end not Default, the damper's own checks.");
+
+  using Kind = AnyContact<double>::Kind;
+  auto mixed = bind_contact_system<PyMixedContactSystem>(
+      m, "MixedContactSystem",
+      "C++ ContactSystem<double, AnyContact<double>>: one scene with contacts of both kinds, PointContact (held "
+      "normal) and BodyContact (unilateral normal), with the rigid bodies and point loads: M z'' = r + sum_i (g_i "
+      "f_i + h_i N_i) as BodyContactSystem, a PointContact's N_i held (docs/contacts.md, \"Mixed scenes\"). State "
+      "[z, z', W_ext, D_visc, D_fric]. Calls on one system from several threads run one after the other.");
+  mixed.def(py::init([](const FrameModel<double>& frame, const ModalBasis<double>& basis, std::vector<Body> bodies,
+                        const std::vector<Kind>& contacts, std::vector<PointLoad<double>> loads, COptions options) {
+              std::vector<AnyContact<double>> all;
+              all.reserve(contacts.size());
+              for (const Kind& c : contacts)
+                all.push_back(std::visit([](const auto& k) { return AnyContact<double>(k); }, c));
+              return std::make_unique<PyMixedContactSystem>(frame, basis, std::move(bodies), std::move(all),
+                                                            std::move(loads), options);
+            }),
+            py::arg("frame"), py::arg("basis"), py::arg("bodies"), py::arg("contacts"),
+            py::arg("loads") = std::vector<PointLoad<double>>{}, py::arg("options") = COptions{},
+            "Assembles the contacts (a list whose items are PointContact or BodyContact, in the order the system "
+            "numbers them) from `frame` and `basis` (a basis of that frame). ValueError naming the body or contact "
+            "and the parameter, as ContactSystem and BodyContactSystem.");
 }
 
 /// simulate() for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
@@ -1424,6 +1489,10 @@ void bind_simulate(py::module_& m) {
       m,
       "A BodyContactSystem's run, as above: states [z, z', audit integrals] (z = q, then each body's x, y, "
       "theta), forces N, f, v (as V) of the contacts; energy: a BodyContactSystem.EnergyBalance.");
+  def_simulate<PyMixedContactSystem>(
+      m,
+      "A MixedContactSystem's run, as above: states [z, z', audit integrals], forces N, f, v (as V) of the contacts "
+      "(a PointContact's N its held normal); energy: a MixedContactSystem.EnergyBalance.");
 }
 
 void bind_trade_study(py::module_& m) {
@@ -1628,8 +1697,10 @@ inline void set_outputs_and_progress(ShootingOptions<double>& opt, const std::op
 template <class Sys>
 ShootingOptions<double> shooting_options(const Sys& system, const std::optional<std::vector<Index>>& periodic,
                                          const std::string& monodromy, double tolerance, int max_iterations,
-                                         double rtol, double atol, long max_steps, const std::string& where) {
+                                         double rtol, double atol, long max_steps, OrbitIntegrator integrator,
+                                         const std::string& where) {
   ShootingOptions<double> opt;
+  opt.integrator = integrator;
   opt.stepper.rtol = rtol;
   opt.stepper.atol = atol;
   opt.stepper.max_steps = checked_max_steps(max_steps, where);
@@ -1779,10 +1850,10 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       [](Py& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
-         const py::object& progress) {
+         const py::object& progress, OrbitIntegrator integrator) {
         return with_system(system, [&](SignalCheck& signals) {
           ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
-                                                         atol, max_steps, "find_periodic_orbit");
+                                                         atol, max_steps, integrator, "find_periodic_orbit");
           set_outputs_and_progress(opt, outputs, output_harmonics, progress, "find_periodic_orbit");
           opt.interrupt = [&signals] { return signals(); };
           State x = x0 ? *x0 : system.initial_state();
@@ -1796,7 +1867,8 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       py::arg("periodic") = py::none(), py::arg("monodromy") = "variational", py::arg("tolerance") = 1e-9,
       py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
       py::arg("max_steps") = StepperOptions<double>{}.max_steps, py::arg("outputs") = py::none(),
-      py::arg("output_harmonics") = 3, py::arg("progress") = py::none(), doc);
+      py::arg("output_harmonics") = 3, py::arg("progress") = py::none(),
+      py::arg("integrator") = OrbitIntegrator::DormandPrince54, doc);
 }
 
 /// continue_orbits for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
@@ -1812,7 +1884,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
          int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
          const py::object& start, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
-         const py::object& progress) {
+         const py::object& progress, OrbitIntegrator integrator) {
         static const std::string where = "continue_orbits";
         if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
           throw std::invalid_argument(where + ": progress must be None or a callable progress(report)");
@@ -1865,7 +1937,8 @@ void def_continue_orbits(py::module_& m, const char* doc) {
         // locked again at the end to take part 0's copy (the system at part 0's last point).
         std::vector<Py> copies;
         PyContinuation out = with_system(system, [&](SignalCheck& signals) {
-          opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps, where);
+          opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol, atol, max_steps,
+                                 integrator, where);
           set_outputs_and_progress(opt, outputs, output_harmonics, py::none(), where);
           x = x0 ? *x0 : system.initial_state();
           md = mode ? to_mode(*mode) : system.requested_mode();
@@ -1929,7 +2002,8 @@ void def_continue_orbits(py::module_& m, const char* doc) {
       py::arg("fast_iterations") = 3, py::arg("growth") = 1.5, py::arg("section_margin") = 0.02,
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
       py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
-      py::arg("outputs") = py::none(), py::arg("output_harmonics") = 3, py::arg("progress") = py::none(), doc);
+      py::arg("outputs") = py::none(), py::arg("output_harmonics") = 3, py::arg("progress") = py::none(),
+      py::arg("integrator") = OrbitIntegrator::DormandPrince54, doc);
 }
 
 void bind_steady_state(py::module_& m) {
@@ -1939,6 +2013,14 @@ void bind_steady_state(py::module_& m) {
       .value("ModeNotPeriodic", ShootingStatus::ModeNotPeriodic, "x(T) = x(0) but the mode at t0 + T is not the start's")
       .value("IntegrationFailed", ShootingStatus::IntegrationFailed, "a run ended early (see the message)")
       .value("SingularJacobian", ShootingStatus::SingularJacobian, "the Newton matrix is singular");
+  py::enum_<OrbitIntegrator>(m, "OrbitIntegrator",
+                             "The integrator of the orbit runs (find_periodic_orbit's and continue_orbits' "
+                             "integrator=; C++ ShootingOptions::integrator).")
+      .value("DormandPrince54", OrbitIntegrator::DormandPrince54,
+             "adaptive Dormand-Prince 5(4) (default; any system, the monodromy by `monodromy`)")
+      .value("Exponential", OrbitIntegrator::Exponential,
+             "exact propagation in linear modes (ExactLinearStepper), whatever the fastest mode; the monodromy by "
+             "central differences of exact runs (`monodromy` ignored)");
   py::enum_<Instability>(m, "Instability", "How a periodic orbit loses stability (its Floquet multipliers).")
       .value("Stable", Instability::None,  // "None" is a Python keyword
              "all multipliers inside the unit circle (C++: None, a Python keyword)")
@@ -1979,7 +2061,8 @@ void bind_steady_state(py::module_& m) {
       "call (KeyboardInterrupt). outputs: rows c (numpy, one column per state component, e.g. probe_rows(...)) "
       "whose y = c . x the orbit reports over its period (PeriodicOrbit.outputs, output_harmonics harmonics); "
       "progress(report): called after every Newton iteration with a ShootingProgress (residual, CPU seconds, an "
-      "estimate of those left). A failure's message names what stalled Newton and the option that addresses it.");
+      "estimate of those left). A failure's message names what stalled Newton and the option that addresses it. "
+      "integrator: the OrbitIntegrator of the runs (Exponential: exact in linear modes, for stiff structures).");
   def_find_periodic_orbit<PyContactSystem>(
       m,
       "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
@@ -1988,6 +2071,10 @@ void bind_steady_state(py::module_& m) {
       m,
       "A BodyContactSystem's forced periodic orbit, as above; the default periodic components are z, z' (q and "
       "the bodies' coordinates, the first 2 num_coordinates()), not the audit integrals.");
+  def_find_periodic_orbit<PyMixedContactSystem>(
+      m,
+      "A MixedContactSystem's forced periodic orbit, as above; the default periodic components are z, z' (the "
+      "first 2 num_coordinates()).");
 
   py::enum_<ContinuationStatus>(m, "ContinuationStatus", "How continue_orbits ended (Branch.status).")
       .value("Completed", ContinuationStatus::Completed, "the branch left the parameter range")
@@ -2059,6 +2146,10 @@ void bind_steady_state(py::module_& m) {
   def_continue_orbits<PyBodyContactSystem>(
       m,
       "A BodyContactSystem's branch, as above: parameter(system, p) returns the BodyContactSystem at p; periodic "
+      "defaults to z, z' (the first 2 num_coordinates() components).");
+  def_continue_orbits<PyMixedContactSystem>(
+      m,
+      "A MixedContactSystem's branch, as above: parameter(system, p) returns the MixedContactSystem at p; periodic "
       "defaults to z, z' (the first 2 num_coordinates() components).");
 
   py::enum_<PoincareStatus>(m, "PoincareStatus", "What poincare_sections found (PoincareSections.status).")
