@@ -84,8 +84,10 @@ struct TradeRow {
   /// Time of the first switch without a partner (of the run or of the reference), NaN when
   /// the sequences agree.
   Scalar first_sequence_difference = std::numeric_limits<Scalar>::quiet_NaN();
-  /// The integrator that ran (the variant's, or Integrator::Auto's choice) and why.
-  std::string method, method_reason;
+  /// The integrator that ran (the variant's, or Integrator::Auto's choice).
+  std::string method;
+  /// Why that integrator ran (Integrator::Auto's rule, or the variant's explicit choice).
+  std::string method_reason;
   /// TradeStudyOptions::energy_residual of the run (NaN without one)
   Scalar energy_residual = std::numeric_limits<Scalar>::quiet_NaN();
   /// A finished run (started and status Success).

@@ -162,9 +162,11 @@ struct HybridResult {
   std::string message;   ///< empty on success; otherwise what happened and where
   /// Counters of the run.
   StepperStats stats;
-  /// simulate(): the integrator that ran ("dopri5", ...) and why (Integrator::Auto's rule, or
-  /// "options.integrator"); empty from a stepper called directly.
-  std::string method, method_reason;
+  /// simulate(): the integrator that ran ("dopri5", ...); empty from a stepper called directly.
+  std::string method;
+  /// simulate(): why that integrator ran (Integrator::Auto's rule, or "options.integrator");
+  /// empty from a stepper called directly.
+  std::string method_reason;
   /// simulate() with RunOptions::check_event_sequence: the switch sequence against a tighter run.
   EventSequenceCheck<Scalar> sequence_check{};
   /// status == Status::Success.
