@@ -177,9 +177,6 @@ TEST(DiskDampers, StuckFrequenciesMatchTheConstrainedEigenSolve) {
   EXPECT_GT(std::sqrt(ref.eigenvalues()(0)), d.basis.omega()(0));
 }
 
-// Under the sanitizers (STICKSLIP_SANITIZED, unoptimised) left out: its runs with variational
-// equations or many forcing periods take minutes there (0.2-0.8 s at -O1).
-#if !defined(STICKSLIP_SANITIZED)
 // The stuck disk in static equilibrium, forced at engine order 1 near its resonance: the dampers
 // stick and slip (and may lift a face off); the energy audit closes, the body loads' work and the
 // stuck projections booked in it.
@@ -200,7 +197,6 @@ TEST(DiskDampers, StickSlipRunUnderEngineOrderForcingClosesTheEnergyAudit) {
   // rtol 1e-10: the audit integrals carry the integration error, ~1e-9 of the work.
   EXPECT_LE(bal.relative_residual(), 1e-7) << bal.residual << " of " << bal.scale;
 }
-#endif  // !STICKSLIP_SANITIZED
 
 }  // namespace disk_damper_test
 
@@ -250,9 +246,6 @@ Vector receptance_state(const Disk& disk, const ModalBasis<double>& basis, doubl
   return x;
 }
 
-// Under the sanitizers (STICKSLIP_SANITIZED, unoptimised) left out: its runs with variational
-// equations or many forcing periods take minutes there (0.2-0.8 s at -O1).
-#if !defined(STICKSLIP_SANITIZED)
 // A linear disk (no contacts): the travelling wave at EO 2 on five blades, computed over
 // tau = T / 5 only, against the closed-form modal receptance of the annulus (the orbit) and the
 // closed-form multipliers of the full period, e^{s T} with s^2 + c s + omega^2 = 0 (modal
@@ -303,7 +296,6 @@ TEST(DiskTravellingWave, LinearDiskIsTheClosedFormModalReceptance) {
   EXPECT_LE(orbit.full_residual, 1e-8 * orbit.x0.cwiseAbs().maxCoeff());
   EXPECT_TRUE(orbit.full_mode_closes);
 }
-#endif  // !STICKSLIP_SANITIZED
 
 // The frequency sweep of the linear disk's travelling waves (secant predictor between points)
 // against the closed-form receptance at every frequency, t0 = 0.
@@ -386,9 +378,6 @@ Vector tip_amplitudes(const Disk& disk, const ModalBasis<double>& basis, const c
   return a;
 }
 
-// Under the sanitizers (STICKSLIP_SANITIZED, unoptimised) left out: its runs with variational
-// equations or many forcing periods take minutes there (0.2-0.8 s at -O1).
-#if !defined(STICKSLIP_SANITIZED)
 // Three blades with friction joints between the platforms that stick and slip under engine
 // order 1: the travelling wave computed over tau = T / 3 against (a) the annulus shot over the
 // full period by Shooting from the same guess (the same orbit to the Newton tolerance, the same
@@ -460,6 +449,5 @@ TEST(DiskTravellingWave, StickSlipWaveEqualsFullAnnulusShootingAndTheLongTransie
   // The orbit is the annulus' travelling wave and not a standing one: tau, not T.
   EXPECT_EQ(orbit.symmetry.shifts_per_period, 3);
 }
-#endif  // !STICKSLIP_SANITIZED
 
 }  // namespace disk_travelling_wave_test

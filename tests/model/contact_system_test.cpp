@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <vector>
@@ -136,8 +137,13 @@ TEST(GroundedSlider, OneModeFollowsDenHartogsClosedFormOrbit) {
   // force off by 1e-6 relative (dX/d(mu N) ~ X / F0 scale).
   EXPECT_LE(worst, 1e-7 * orbit.X);
   // The start (stuck -> sliding up), then two stops per period, each a slip reversal (no stick,
-  // mu_s = mu_k): 7 inside (t1, t1 + 4T), the eighth falls on the run's end.
-  EXPECT_EQ(sys.events().size(), 1u + 7u);
+  // mu_s = mu_k): 7 inside (t1, t1 + 4T). The eighth falls on the run's end, where whether it is
+  // located depends on the method's last step (Integrator::Auto runs this exactly linear scene
+  // by the exponential method): only the switches before the end are counted.
+  const double t_end = orbit.t1 + 4 * orbit.T;
+  const auto before_end = std::count_if(sys.events().begin(), sys.events().end(),
+                                        [&](const auto& ev) { return ev.t < t_end - 1e-6 * orbit.T; });
+  EXPECT_EQ(before_end, 1 + 7);
   for (const auto& ev : sys.events()) EXPECT_NE(ev.to, ContactState::Stick);
   const auto b = sys.energy_balance(result.x, E0);
   EXPECT_LE(b.relative_residual(), 1e-7);  // the audit closes to the integration error
