@@ -36,7 +36,7 @@ for h in "${harnesses[@]}"; do
   echo "=== ${h}: ${seconds} s ==="
   # -timeout: work per input is bounded (tests/fuzz/*_fuzz.cpp); the slowest bounded case, the
   # stepper harness's 2e5-sample cap, takes ~1.5 s (~10 s under ASan), so 30 s is a hang.
-  # -rss_limit_mb / -malloc_limit_mb catch the absurd allocations of issue #18 item 12.
+  # -rss_limit_mb / -malloc_limit_mb catch the absurd allocations that a fuzz run found.
   UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     "build/fuzz/tests/fuzz/${h}_fuzzer" "${corpus}" -max_total_time="${seconds}" -timeout=30 \
     -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=512 -fork=1 -ignore_crashes=1 \

@@ -367,7 +367,7 @@ BENCHMARK_TEMPLATE(BM_EventWindow, ExponentialStepper)->ArgsProduct({{0}, {1, 0}
 
 /// The example's default run (DOPRI 5(4), rtol 1e-8, atol 1e-12, root finding, samples every
 /// 1e-4 s with full records over the last second) at N0 = range(0) N, once; range(1) = 1: the
-/// exponential method (ExactLinearStepper, issue #19) instead of DOPRI.
+/// exponential method (ExactLinearStepper) instead of DOPRI.
 void BM_DefaultScene20s(benchmark::State& st) {
   blade::BladeParameters p;
   p.preload = static_cast<double>(st.range(0));

@@ -1,4 +1,4 @@
-// Peer benchmark (issue #19): the stick-slip oscillators of peer_problems.hpp integrated by the
+// Peer benchmark: the stick-slip oscillators of peer_problems.hpp integrated by the
 // library (HybridStepper), by Boost.Odeint and by SUNDIALS CVODE, each "as its users write it".
 // For each problem x implementation x target final-state error (1e-6, 1e-9) it finds the loosest
 // tolerance setting that reaches the target with the reference's event sequence, times it (median

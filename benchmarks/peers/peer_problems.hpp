@@ -173,7 +173,7 @@ struct DenHartogSteadyState {
   double F0_ = 0, omega_ = 1, R_ = 0;
 };
 
-/// The problems of the benchmark (issue #19).
+/// The problems of the benchmark.
 inline std::vector<ChainParameters> make_problems() {
   std::vector<ChainParameters> out;
   {

@@ -1,4 +1,4 @@
-// Cost of the blade's periodic orbits (issue #21's targets: one orbit <= 50 ms, a 200-point
+// Cost of the blade's periodic orbits (targets: one orbit <= 50 ms, a 200-point
 // frequency-response curve <= 10 s on 2 cores, and the ratio against reaching the same steady
 // state by a transient). A program writing JSON (one run; ratios from that run), CPU seconds of
 // this thread:

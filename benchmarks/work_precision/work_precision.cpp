@@ -379,7 +379,7 @@ std::vector<Job> make_jobs(const std::vector<Scene>& scenes) {
       j->config.v_eps = ve;
     }
     if (belt) continue;
-    // The exponential method (ExactLinearStepper on the model's linear part, issue #19): exact in
+    // The exponential method (ExactLinearStepper on the model's linear part): exact in
     // stuck modes (rtol governs only its Lawson steps in the slipping modes with a moving contact),
     // and exact in every mode with the contact point fixed.
     for (double rtol : {1e-4, 1e-6, 1e-8, 1e-10})

@@ -1,6 +1,6 @@
-// Checked inputs of FrameModel (issue #18): overflow and underflow in the section, the member
-// geometry, the nodal masses and the assembly are named by their cause (item 9), and absurd sizes
-// are refused against stated limits (item 12).
+// Checked inputs of FrameModel: overflow and underflow in the section, the member
+// geometry, the nodal masses and the assembly are named by their cause, and absurd sizes
+// are refused against stated limits.
 
 #include "beam/beam_test_support.hpp"
 

@@ -1,4 +1,4 @@
-// NodeId and MemberId (issue #18 item 7): a node id passed where a member is expected, or the
+// NodeId and MemberId: a node id passed where a member is expected, or the
 // reverse, must not compile, while ids keep working as plain indices. The compile-time half is a
 // set of static_asserts on the library's own signatures (they fail to compile if the types merge
 // again); the run-time half checks that ids round-trip through the frame unchanged.

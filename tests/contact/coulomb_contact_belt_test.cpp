@@ -135,7 +135,7 @@ TEST(BeltStickSlip, LimitCycleMatchesClosedFormRungeKutta4Bisection) {
   check_belt_cycle<stickslip::RungeKutta4>({0.5, 0.3, 0.1}, opt);
 }
 
-// Issue #18.1, "a stop read as a velocity reversal": with large RK4 steps the state handed to
+// "A stop read as a velocity reversal": with large RK4 steps the state handed to
 // the transition at the end of a slip was past v = 0 by the dense-output error (3e-8 ... 1.7e-7),
 // above the contact's velocity tolerance sqrt(eps), and decide() read it as a reversal (slip
 // positive) where the body sticks: every second event was wrong. Now the stepper hands over a

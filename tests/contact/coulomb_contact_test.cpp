@@ -257,7 +257,7 @@ TEST(CoulombContactForce, RegularisedLawIgnoresTheStateButLiftOff) {
   EXPECT_EQ(contact.friction_force(S::LiftOff, 0.2, 2.0, 0.7), 0.0);
 }
 
-// Issue #18.1: a slip state whose velocity guard fired is at v = 0 as located. decide() reads a
+// A slip state whose velocity guard fired is at v = 0 as located. decide() reads a
 // leftover v above its tolerance as motion; decide_at_rest() applies rules 1, 3, 4 only.
 TEST(CoulombContactDecide, AtRestIgnoresTheLeftoverVelocityOfAStop) {
   const CoulombContact<CoulombLaw<double>> contact(CoulombLaw<double>(kMuS, kMuK), kTol);
@@ -296,7 +296,7 @@ TEST(CoulombContactDecide, VelocityGuardFiredOnlyForTheSlipVelocityGuard) {
   EXPECT_FALSE(R::velocity_guard_fired(S::SlipPositive, v_guard));
 }
 
-// Issue #18.6: guards() with a callable evaluates the stick force required in stick only, and
+// Guards() with a callable evaluates the stick force required in stick only, and
 // gives the values of the scalar form.
 TEST(CoulombContactGuards, RequiredForceIsEvaluatedInStickOnly) {
   const CoulombContact<CoulombLaw<double>> contact(CoulombLaw<double>(kMuS, kMuK), kTol);

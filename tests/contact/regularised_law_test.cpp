@@ -58,7 +58,7 @@ TEST(RegularisedLaw, RejectsBadParametersNamingThem) {
   expect_invalid_argument([&] { Law(0.3, inf); }, {"RegularisedLaw", "v_eps", "inf"});
 }
 
-// Issue #18 item 11: RegularisedLaw(0.3, 1e-310).coefficient_derivative(0.01) was inf * 0 = NaN
+// RegularisedLaw(0.3, 1e-310).coefficient_derivative(0.01) was inf * 0 = NaN
 // (mu / v_eps overflowed before the factor 1 - tanh^2 = 0). A v_eps whose slope mu / v_eps
 // overflows is now rejected by name with its limit, and at the smallest admitted v_eps the
 // derivative is finite everywhere: the closed form (mu / v_eps) sech^2(v / v_eps).

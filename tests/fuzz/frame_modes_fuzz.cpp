@@ -5,19 +5,19 @@
 // Rules checked on a basis that compute_modes returns (independent references):
 //  * an assembly error does not blame a node not attached to a member (every node is);
 //  * the direction cosines of every member form a unit vector (to 1e-12; a 1e-160 m member must be
-//    refused or get exact cosines, issue #18 item 9);
+//    refused or get exact cosines);
 //  * omega finite, >= 0, ascending; Phi finite; no more zero frequencies than
-//    FrameModel::count_rigid_body_modes() (issue item 8: a clamped cantilever has none);
+//    FrameModel::count_rigid_body_modes() (a clamped cantilever has none);
 //  * each pair solves K phi = omega^2 M phi with relative backward error
 //    |K phi - omega^2 M phi| / ((|K| + omega^2 |M|) |phi|) <= 1e-6 (1-norms), and Phi^T M Phi = I
 //    to 1e-6: both are ~1e-14 for a well-conditioned frame; 1e-6 leaves room for the condition
-//    factor of graded meshes while catching wrong pairs (residual ~1, issue item 8);
+//    factor of graded meshes while catching wrong pairs (residual ~1);
 //  * dense and sparse agree: when the frame has <= 200 free DOFs the other solver is run too and
 //    each omega agrees to 1e-6 relative (Spectra's tolerance is 1e-10 on the shifted Ritz values);
 //  * a clamped uniform cantilever (no point masses or springs, consistent mass, bending below half
 //    the first axial frequency) has omega_1 within 1 % of Euler-Bernoulli's closed form
 //    (beta_1 L)^2 sqrt(EI / (rho A L^4)), beta_1 L = 1.8751040687: one cubic element is 0.5 % high,
-//    finer meshes are closer (issue item 8: a 1e-6 m element gave omega_1 = 311 for 261 rad/s);
+//    finer meshes are closer (a 1e-6 m element gave omega_1 = 311 for 261 rad/s);
 //  * with_rayleigh_damping(alpha, beta) gives c_i = alpha + beta omega_i^2 (closed form), finite
 //    for alpha, beta <= 1e100.
 #include "fuzz/fuzz_frames.hpp"
@@ -81,7 +81,7 @@ void run(stickslip_fuzz::Input& in) {
   const double alpha = in.real(0.0, 20.0), beta = in.real(0.0, 1e-5);
 
   // Every node of these frames lies on a member: an assembly error saying otherwise names the
-  // wrong cause (issue #18 item 9: an overflowing rho A was reported so).
+  // wrong cause (an overflowing rho A was reported so).
   const AssembledFrame<double> K_M = [&] {
     try {
       return f.frame.assemble(f.lumped ? MassType::Lumped : MassType::Consistent);

@@ -10,7 +10,7 @@
 // across its tip: the paper's geometry), 3 free-free T-frame, 4 beam pinned at the root (one
 // rigid-body mode, the rotation about the pin).
 // Work bound: more than 64 elements per member (but fewer than 2^40) become 64; counts of 2^40
-// and more pass to a uniform mesh, and must be refused by name (issue #18 item 12); a graded mesh
+// and more pass to a uniform mesh, and must be refused by name; a graded mesh
 // has 1 to 64 elements after its first.
 #include "fuzz/fuzz_input.hpp"
 

@@ -170,7 +170,7 @@ def separation(L1=0.2, L2=0.04, elements=4, num_modes=2, dampers=(), loads=(), c
 
 CORPUS = {
     'contact': {
-        # issue #18 item 11: mu / v_eps overflows, the derivative was inf * 0 = NaN
+        # mu / v_eps overflows, the derivative was inf * 0 = NaN
         'item11_regularised_derivative_tiny_v_eps': contact_regularised(
             0.3, 1e-310, False, 1.5e-8, [contact_probe(1, 0.01, 1.0, 0.0)]),
         'item11_regularised_derivative_tiny_v_eps_linear': contact_regularised(
@@ -181,18 +181,18 @@ CORPUS = {
             contact_probe(1, 0.0, -1.0, 0.0, True)]),
         'decide_non_finite_inputs': contact_coulomb(0.4, 0.3, 1e-8, [
             contact_probe(0, NAN, 1.0, 0.0), contact_probe(1, 0.0, INF, 0.0), contact_probe(2, 0.0, 1.0, -INF)]),
-        # issue #22: the Separated state (4): no friction force, one Falling guard (the gap), decide's rules
+        # the Separated state (4): no friction force, one Falling guard (the gap), decide's rules
         'separated_state': contact_coulomb(0.4, 0.3, 1e-8, [
             contact_probe(4, 0.5, 1e-3, 0.1), contact_probe(4, 0.0, 0.0, 0.0, True), contact_probe(4, 0.0, 2.0, 0.7),
             contact_probe(4, NAN, INF, -INF, True)]),
-        # issue #22: impacts (kind 5) with the directions decoupled (W_nt = 0): a bounce that sticks, a bounce
+        # impacts (kind 5) with the directions decoupled (W_nt = 0): a bounce that sticks, a bounce
         # that slips, a landing below the landing speed, a plastic impact (e = 0), no approach (v_n > 0), and an
         # elastic impact (e = 1) that loses only the sliding energy
         'impact_decoupled': contact_coulomb(0.4, 0.3, 1e-8, [
             impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -1.0, 0.01), impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -1.0, 5.0),
             impact_probe(0.5, 1e-4, 20.0, 0.0, 20.0, -5e-5, -0.3), impact_probe(0.0, 0.0, 1.0, 0.0, 3.0, -2.0, -1.0),
             impact_probe(0.5, 1e-4, 1.0, 0.0, 1.0, 0.5, 1.0), impact_probe(1.0, 0.0, 2.0, 0.0, 2.0, -1.0, 0.0)]),
-        # issue #22: impacts with the directions coupled (a damper on a modal member: W = I/m + Psi^T Psi), in
+        # impacts with the directions coupled (a damper on a modal member: W = I/m + Psi^T Psi), in
         # stick and in slip, e = 1 (Newton + Coulomb may create energy there, reported), and the refusals:
         # W not positive definite, W asymmetric, a non-finite v, e > 1, a negative landing speed
         'impact_coupled': contact_coulomb(0.4, 0.3, 1e-8, [
@@ -200,28 +200,28 @@ CORPUS = {
             impact_probe(1.0, 0.0, 1.0, 0.9, 1.0, -1.0, -0.2), impact_probe(0.5, 1e-4, 1.0, 2.0, 1.0, -1.0, 0.0),
             impact_probe(0.5, 1e-4, 1.0, 0.5, 1.0, -1.0, 0.0, W_tn=0.4), impact_probe(0.5, 1e-4, 1.0, 0.0, 1.0, NAN, 0.0),
             impact_probe(1.5, 1e-4, 1.0, 0.0, 1.0, -1.0, 0.0), impact_probe(0.5, -1e-4, 1.0, 0.0, 1.0, -1.0, 0.0)]),
-        # issue #22: impacts at extreme sizes (well posed at 1e50 / 1e-50; beyond, only the exception types)
+        # impacts at extreme sizes (well posed at 1e50 / 1e-50; beyond, only the exception types)
         'impact_extremes': contact_coulomb(1e6, 1e6, 0.0, [
             impact_probe(0.5, 0.0, 1e-50, 0.0, 1e50, -1e50, 1e50), impact_probe(1.0, 0.0, 1e50, 1e-50, 1e-50, -1e-300, 1e-300),
             impact_probe(0.5, 0.0, 1e-300, 0.0, 1e-300, -1e300, 1e300), impact_probe(0.5, 0.0, 0.0, 0.0, 1.0, -1.0, 0.0),
             impact_probe(0.5, INF, 1.0, 0.0, 1.0, -1.0, 0.0)]),
-        # issue #22: a regularised law has no stick state: only NewtonImpact is probed
+        # a regularised law has no stick state: only NewtonImpact is probed
         'impact_regularised': contact_regularised(0.3, 1e-4, False, 1e-8, [
             impact_probe(0.5, 1e-4, 2.0, 1.0, 2.0, -1.0, 0.5), impact_probe(0.0, 0.0, 2.0, 0.0, 2.0, -1.0, 0.5)]),
         'extreme_forces': contact_coulomb(1e6, 1e6, 0.0, [
             contact_probe(1, 1e150, 1e150, 1e150, True), contact_probe(0, 0.0, 1e150, -1e150, True)]),
     },
     'stepper': {
-        # issue #18 item 4: ~1e12 on_sample calls within one step (max_steps = 1)
+        # ~1e12 on_sample calls within one step (max_steps = 1)
         'item4_output_interval_1e-15_max_steps_1': stepper(output_interval=1e-15, max_steps=1, span=1e-3),
-        # issue #18 item 4: t0 = t_end = 1e300, interval 0.01: t0 + k dt rounds to t0 for ever
+        # t0 = t_end = 1e300, interval 0.01: t0 + k dt rounds to t0 for ever
         'item4_t0_equals_t_end_1e300_interval': stepper(output_interval=0.01, t0=1e300, span=0.0),
-        # issue #18 item 4: RK4 at t0 = 1e17 with h = 1e-6: t + h rounds to t (ulp(1e17) = 16)
+        # RK4 at t0 = 1e17 with h = 1e-6: t + h rounds to t (ulp(1e17) = 16)
         'item4_rk4_t0_1e17_h_1e-6': stepper(method=0, fixed_step=1e-6, t0=1e17, span=1024.0),
-        # issue #18 item 12: the Zeno ring buffer sized zeno_max_events + 1 (overflow / 8 GB)
+        # the Zeno ring buffer sized zeno_max_events + 1 (overflow / 8 GB)
         'item12_zeno_max_events_long_max': stepper(zeno_max_events=LONG_MAX, span=0.01),
         'item12_zeno_max_events_1e9': stepper(zeno_max_events=10**9, span=0.01),
-        # issue #18 item 1: a located stick event read as a velocity reversal (leftover v ~ 1e-7
+        # a located stick event read as a velocity reversal (leftover v ~ 1e-7
         # above the tolerance sqrt(eps)): belt oscillator with RK4 at h = 0.1 and with DOPRI at
         # rtol 1e-4, a forced oscillator on a slow belt with RK4 at h = 0.1
         'item1_belt_rk4_h0.1_stick_read_as_reversal': stepper(
@@ -238,10 +238,10 @@ CORPUS = {
         'belt_rosenbrock': stepper(k=1.0, v_belt=0.5, N=1.0, mu_s=0.5, mu_k=0.3, method=2, rtol=1e-6, span=20.0),
     },
     'frame_modes': {
-        # issue #18 item 8 (dense path): clamped cantilever with a 1e-9 m / 1e-6 m first element
+        # clamped cantilever with a 1e-9 m / 1e-6 m first element
         'item8_cantilever_1e-9_element_dense': frame_modes(frame(topology=0, elements=4, tiny=1e-9), solver=1),
         'item8_cantilever_1e-6_element_dense': frame_modes(frame(topology=0, elements=4, tiny=1e-6), solver=1),
-        # issue #18 item 8 (sparse path): small frames with rigid-body modes
+        # small frames with rigid-body modes
         # (a pinned beam: one element gives two zero frequencies for one rigid-body mode; three
         # elements give omega_1 1146.55 for the dense 1145.60 rad/s; lumped mass: Phi^T M Phi off by
         # 1e-6); free beams and free T-frames pass and stay as guards
@@ -251,18 +251,18 @@ CORPUS = {
                                                         solver=2),
         'item8_free_beam_sparse': frame_modes(frame(topology=1, elements=4), num_modes=4, solver=2),
         'item8_free_t_frame_sparse': frame_modes(frame(topology=3, elements=4), num_modes=5, solver=2),
-        # issue #18 item 9: two point masses of 1e308 kg; overflowing E I and rho A; a 1e-160 m member
+        # two point masses of 1e308 kg; overflowing E I and rho A; a 1e-160 m member
         'item9_point_masses_1e308': frame_modes(frame(topology=0, masses=[(True, 1e308), (True, 1e308)])),
         'item9_E_I_overflow': frame_modes(frame(topology=0, E=1e300, I_=1e10)),
         'item9_rho_A_overflow': frame_modes(frame(topology=0, rho=1e300, A=1e10)),
         'item9_member_1e-160_m': frame_modes(frame(topology=0, L=1e-160, theta=0.3, elements=1)),
-        # issue #18 item 10 (basis side): Rayleigh alpha = 10 on a frame with rigid-body modes
+        # Rayleigh alpha = 10 on a frame with rigid-body modes
         'item10_rayleigh_alpha_10_free_beam': frame_modes(frame(topology=1, elements=4), solver=1, alpha=10.0),
-        # issue #18 item 12: 2^62 elements
+        # 2^62 elements
         'item12_elements_2_pow_62': frame_modes(frame(topology=0, elements=2**62)),
         'item12_elements_2_pow_40': frame_modes(frame(topology=0, elements=2**40)),
         # found by random inputs: Spectra's own error ("TridiagEigen: eigen decomposition failed",
-        # std::runtime_error) escapes compute_modes on a stiff (I = 6.6e214 m^4) free beam (item 8)
+        # std::runtime_error) escapes compute_modes on a stiff (I = 6.6e214 m^4) free beam
         'item8_sparse_spectra_error_escapes': frame_modes(
             frame(topology=1, E=102436255436.02655, rho=4975.692378118562, A=0.00043380091554131385,
                   I_=6.627624794152039e+214, L=0.08581918059052415, theta=3.149510948348211, elements=4,
@@ -278,14 +278,14 @@ CORPUS = {
         'graded_cantilever': member_shapes(frame(topology=0, elements=3, tiny=1e-4), eps=[1e-4, 5e-5, 0.19]),
     },
     'model': {
-        # issue #18 item 7: a state one entry short / long, a DamperStates of the wrong count
+        # a state one entry short / long, a DamperStates of the wrong count
         'item7_state_one_short': model(T_FRAME, dampers=[damper(), damper(X0=0.015)], loads=[load()], state_size=6),
         'item7_state_one_long': model(T_FRAME, dampers=[damper()], loads=[load()], state_size=7),
         'item7_mode_one_short': model(T_FRAME, dampers=[damper(), damper(X0=0.015)], loads=[load()], mode_size=6),
         'item7_mode_one_long': model(T_FRAME, dampers=[damper()], loads=[load()], mode_size=7),
-        # issue #18 item 10: Rayleigh alpha = 10 on a frame with a rigid-body mode (free-free T-frame)
+        # Rayleigh alpha = 10 on a frame with a rigid-body mode (free-free T-frame)
         'item10_rayleigh_alpha_10_free_t_frame': model(frame(topology=3, elements=4), num_modes=4, alpha=10.0),
-        # issue #18 item 9 through the model: point masses of 1e308 kg
+        # point masses of 1e308 kg through the model
         'item9_point_masses_1e308_model': model(frame(topology=2, elements=4, masses=[(True, 1e308), (True, 1e308)]),
                                                 dampers=[damper()], loads=[load()]),
         'paper_t_frame_dopri': model(T_FRAME, dampers=[damper(), damper(X0=0.015)], loads=[load(amplitude=200.0)]),

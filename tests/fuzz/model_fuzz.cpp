@@ -11,12 +11,12 @@
 //
 // Work bound: <= 8 modes, <= 3 dampers, max_steps <= 2000. Rules checked besides the exception
 // types:
-//  * a state or a DamperStates of the wrong size must be refused (issue #18 item 7): a run that
+//  * a state or a DamperStates of the wrong size must be refused: a run that
 //    returns normally with one is a violation (before the fix it reads past the buffer, which
 //    ASan reports, or returns Success with wrong physics);
 //  * without dampers and loads, the modal equations are q'' = -c q' - omega^2 q with the basis'
 //    damping coefficients c = damping_coefficients() (closed form; Rayleigh alpha must reach a
-//    rigid-body mode, issue item 10), to 1e-12 of the terms' size;
+//    rigid-body mode), to 1e-12 of the terms' size;
 //  * Success means t = t_end, a finite state and, with the audit on, a finite energy residual;
 //    other statuses carry a message.
 #include "fuzz/fuzz_frames.hpp"

@@ -13,12 +13,12 @@
 //  * time advances: every accepted step and every sample lies strictly after the previous one
 //    (a step that leaves t unchanged is the start of a hang; only a step ending at an event may
 //    have zero length), and no more steps than max_steps;
-//  * zeno_max_events >= 1e9 is refused (issue #18 item 12: its ring buffer took 8 GB);
+//  * zeno_max_events >= 1e9 is refused (its ring buffer took 8 GB);
 //  * Success means t = t_end and a finite state; another status carries a message;
 //  * at every event (state after the transition, f_required at the event): a contact that
 //    sticks has |f_required| <= mu_s N; a stuck contact starts slipping against f_required; a
 //    slip that reverses direction needs |f_required| >= mu_s N (otherwise v reached 0 with the
-//    force inside the capacity: a stick read as a reversal, issue #18 item 1). Margins 1e-6 of
+//    force inside the capacity: a stick read as a reversal). Margins 1e-6 of
 //    mu_s N: the event is located to ~1e-12 s, and the force moves by |df/dt| * 1e-12 in that time.
 #include "fuzz/fuzz_input.hpp"
 
@@ -131,7 +131,7 @@ template <class Method>
 void integrate(Oscillator& sys, const StepperOptions<double>& opt, ContactState mode, double t0,
                const Oscillator::State& x0, double t_end) {
   HybridStepper<Oscillator, Method> stepper(sys, opt);
-  // Issue #18 item 12: a Zeno cap of 1e9 events cost 8 GB of ring buffer; such caps must be refused
+  // a Zeno cap of 1e9 events cost 8 GB of ring buffer; such caps must be refused
   // by name (checked here, before integrate would allocate).
   require(opt.zeno_max_events < 1000000000L,
           "zeno_max_events = " + std::to_string(opt.zeno_max_events) + " accepted (no stated limit)");

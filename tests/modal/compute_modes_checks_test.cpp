@@ -1,4 +1,4 @@
-// compute_modes does not trust its eigensolvers (issue #18, item 8): regression tests of the
+// compute_modes does not trust its eigensolvers: regression tests of the
 // cases in the issue (small frames with a rigid-body mode on the Spectra path; a cantilever with
 // a tiny element on the dense path) against closed forms, and of the a-posteriori checks.
 
@@ -49,7 +49,7 @@ AssembledFrame<double> blade_with_tiny_root_element(double tiny) {
 }
 
 TEST(ComputeModesChecks, SparseSolverOnSmallPinnedBeamsHasNoSpuriousMode) {
-  // Issue #18: with one rigid-body mode, Lanczos about sigma = -100 eps trace(K)/trace(M) returned
+  // With one rigid-body mode, Lanczos about sigma = -100 eps trace(K)/trace(M) returned
   // a spurious second near-zero mode (omega ~ 1e-5 rad/s, residual 1) and elastic frequencies
   // off by 1e-3 to 0.5. Reference: the dense solver on the same matrices (standard reduction,
   // backward stable; these 1-6 element models are well conditioned, eps lambda_max / lambda_2 <
@@ -77,7 +77,7 @@ TEST(ComputeModesChecks, SparseSolverOnSmallPinnedBeamsHasNoSpuriousMode) {
 }
 
 TEST(ComputeModesChecks, SparseSolverOnSmallFreeFreeBeamsMatchesDense) {
-  // Issue #18, same defect with three rigid-body modes (free-free beam of 2-6 elements):
+  // The same defect with three rigid-body modes (free-free beam of 2-6 elements):
   // elastic frequencies were off by up to 1e-5 (residuals 1e-5). Dense reference as above.
   for (int elements = 2; elements <= 6; ++elements) {
     FrameModel<double> model;
@@ -108,7 +108,7 @@ TEST(ComputeModesChecks, PinnedBeamOnSparsePathMatchesClosedForm) {
 }
 
 TEST(ComputeModesChecks, CantileverWithTinyElementHasTheEulerBernoulliFrequencies) {
-  // Issue #18: a 1e-9 m element next to 5 mm ones made the dense solver return omega = 0, 0 (no
+  // A 1e-9 m element next to 5 mm ones made the dense solver return omega = 0, 0 (no
   // rigid-body mode), a 1e-6 m element a wrong first frequency: the standard reduction's error
   // eps * lambda_max swamps lambda_1 when the tiny element's stiffness (EI / h^3) dominates.
   // Reference: Euler-Bernoulli clamped-free, omega_n = (beta_n L)^2 sqrt(EI / (rho A L^4)) with
@@ -204,7 +204,7 @@ TEST(ComputeModesChecks, ShortElementIsRefusedWhereItsRoundOffWouldSwampTheModes
 AssembledFrame<double> oscillators() { return grounded_oscillators().assemble(); }
 
 TEST(ComputeModesChecks, NegativeEigenvalueIsAnErrorNotOmegaZero) {
-  // Issue #18: lambda <= 0 became omega = 0. K = diag(-800, 1800, 50) has lambda = -400, far
+  // Lambda <= 0 became omega = 0. K = diag(-800, 1800, 50) has lambda = -400, far
   // beyond round-off: an error on both paths (the sparse one finds no positive definite
   // K - sigma M and falls back to dense).
   auto frame = oscillators();

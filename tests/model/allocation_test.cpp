@@ -183,7 +183,7 @@ using namespace stickslip;
 using System = FrictionDampedSystem<double>;
 using Index = Eigen::Index;
 
-// FrictionDampedSystem::linear_part (issue #19) allocates nothing once the LinearPart has the
+// FrictionDampedSystem::linear_part allocates nothing once the LinearPart has the
 // mode's sizes: in an exact mode (both dampers stuck, moving contact) at new states, at a moved
 // X (a new key: the probes run again) and repeated (the kept result is copied), and in a mode that
 // is not exact (one damper slipping at a moving contact: probes and the remainder correction at

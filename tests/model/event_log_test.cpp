@@ -1,4 +1,4 @@
-// FrictionDampedSystem::events() against the stepper's HybridStats::events (issue #20 item 4).
+// FrictionDampedSystem::events() against the stepper's HybridStats::events.
 // The system logs one ContactEvent per damper whose state a resolution changed, in transition()
 // and in make_consistent(); the stepper counts one event per transition() call, however many
 // dampers it switched (several, one, or none when it stops the run). The reference for each run

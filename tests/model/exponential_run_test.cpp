@@ -1,5 +1,5 @@
-// simulate() with Integrator::Exponential (ExactLinearStepper on FrictionDampedSystem::linear_part,
-// issue #19) on the work-precision study's three regimes (2.0 N gross slip, 2.6 N stick-slip,
+// simulate() with Integrator::Exponential (ExactLinearStepper on FrictionDampedSystem::linear_part)
+// on the work-precision study's three regimes (2.0 N gross slip, 2.6 N stick-slip,
 // 26 N stick) of the paper's T-frame. Reference: the library's Dormand-Prince at rtol 1e-12, an
 // independent integrator of the same equations (it never calls linear_part). The energy audit is
 // checked against its own largest term.

@@ -1,5 +1,5 @@
-// Checked inputs of the model (issue #18): state and mode sizes at the entry points (item 7) and
-// the basis' modal damping coefficients, Rayleigh damping of rigid-body modes included (item 10).
+// Checked inputs of the model: state and mode sizes at the entry points and
+// the basis' modal damping coefficients, Rayleigh damping of rigid-body modes included.
 #include "contact/contact_test_util.hpp"
 #include "model/model_test_scenes.hpp"
 

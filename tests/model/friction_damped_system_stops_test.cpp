@@ -197,7 +197,7 @@ TEST(InvalidInput, ThrowsNamingTheParameter) {
   expect_invalid(with([](D& d, L&) { d[0].member = 7; }), "member");
   expect_invalid(with([](D&, L& l) { l[0].member = -1; }), "member");
   expect_invalid(with([](D& d, L&) { d[1].side = 0.5; }), "side");
-  // Separation and member ends (issue #22): coefficients of restitution in [0, 1], landing speed >= 0.
+  // Separation and member ends: coefficients of restitution in [0, 1], landing speed >= 0.
   expect_invalid(with([](D& d, L&) { d[0].restitution = -0.1; }), "restitution");
   expect_invalid(with([](D& d, L&) { d[0].restitution = 1.5; }), "restitution");
   expect_invalid(with([](D& d, L&) { d[1].restitution = std::nan(""); }), "restitution");

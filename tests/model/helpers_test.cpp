@@ -1,4 +1,4 @@
-// Helpers of the composition layer (issue #20 item 3): stuck_natural_modes, static_preload_start
+// Helpers of the composition layer: stuck_natural_modes, static_preload_start
 // and the DamperStatistics observer. References: the finite-element frame with each stuck damper
 // as an explicit point mass and spring (component 1 alone), closed forms of one-mode scenes from
 // component 2's nodal values, a static finite-element solve, the model's own event log and a

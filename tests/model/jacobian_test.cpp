@@ -1,4 +1,4 @@
-// FrictionDampedSystem::jacobian (issue #21: the variational equations of shooting): df/dx from
+// FrictionDampedSystem::jacobian (the variational equations of shooting): df/dx from
 // the mode's exact linear part where there is one (stick; slip at a fixed contact), central
 // differences elsewhere. Reference: Richardson-extrapolated central differences of rhs()
 // computed here with steps scaled to each component (an independent computation of the same

@@ -1,4 +1,4 @@
-// The landing band of a separated damper (issue #22; docs/model_separation.md "Separation", "The landing
+// The landing band of a separated damper (docs/model_separation.md "Separation", "The landing
 // band"): a bounce whose rebound would not rise above 1e-8 L is a landing. Without it a
 // bounce sequence under a strong pull never reached the landing speed: each impact is located
 // where the gap guard, restarted at zero after the previous bounce and so disarmed, has sunk by

@@ -1,4 +1,4 @@
-// FrictionDampedSystem::linear_part (issue #19): the linear part x_L' = A x_L + b(t) + r of each
+// FrictionDampedSystem::linear_part: the linear part x_L' = A x_L + b(t) + r of each
 // discrete mode with the contact coordinates frozen. References: the model's own right-hand side
 // and guards (A x + b(t) must reproduce them where the mode is exact - a property of the
 // decomposition, not a value it produced), and for the all-stuck structure an independent

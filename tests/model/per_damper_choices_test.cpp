@@ -1,4 +1,4 @@
-// Per-damper modelling choices (issue #20, item 2): PointDamper::contact_point (Moving / Fixed)
+// Per-damper modelling choices: PointDamper::contact_point (Moving / Fixed)
 // beside the scene-wide ModelOptions::moving_contact, on the paper's T-frame with two dampers.
 // References: the scene-wide fixed-contact model (every damper Fixed must be that model, bitwise);
 // a stuck damper's contact cannot move (X' = V = 0), so a scene whose only moving damper never
@@ -37,7 +37,7 @@ double tip_max_difference(const Recorder& a, const Recorder& b, double& scale) {
   return diff;
 }
 
-// ContactState::Separated (issue #22, the contact component) is not a state of this model: a
+// ContactState::Separated (the contact component) is not a state of this model: a
 // damper cannot start in it and a mode holding it is rejected before any solve (before, the model
 // would have read a separated damper as slipping with no slip direction).
 TEST(PerDamperInitialState, LiftOffAndSeparatedAreRejectedAndSoIsASeparatedMode) {

@@ -1,4 +1,4 @@
-// A damper that leaves its member and lands again (issue #22, PointDamper::separation =
+// A damper that leaves its member and lands again (PointDamper::separation =
 // Separate; docs/model_separation.md "Separation"). The scene: the T-frame truncated to its first mode
 // (the blade's bending, which moves the platform both along its axis, psi_u, and across it,
 // psi_w), one damper at a fixed contact point, lifted off by a harmonic load at the mode's

@@ -1,4 +1,4 @@
-// trade_study() (issue #20 item 1) on systems whose answers are closed form: the harmonic
+// trade_study() on systems whose answers are closed form: the harmonic
 // oscillator x = cos(w t) of tests/ode/ode_test_systems.hpp, whose RK4 phase and energy errors
 // are known per step, and whose zeros (k - 1/2) pi / w give the switch times of its guard.
 #include "model/model_test_scenes.hpp"

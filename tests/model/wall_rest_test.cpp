@@ -1,4 +1,4 @@
-// Resting contact at a wall (issue #22; docs/model_separation.md "Resting at a wall"): a damper that its
+// Resting contact at a wall (docs/model_separation.md "Resting at a wall"): a damper that its
 // spring keeps pushing into a MemberEnd::Wall comes to rest against it (an arrival at or below
 // PointDamper::landing_speed, or a plastic wall), the wall takes the push beyond mu_s N, and
 // the damper leaves when the force pulls it away beyond the friction bound. The references are

@@ -102,7 +102,7 @@ TEST(NoAllocationPerStep, Rosenbrock23Reuse) {
   expect_allocations_independent_of_run_length<stickslip::Rosenbrock23Reuse>();
 }
 
-// Issue #18.3: stick has two guards, slip one; every event changed the guard count and
+// Stick has two guards, slip one; every event changed the guard count and
 // reallocated the stepper's guard vectors and the guard monitor's arrays. After a first run that
 // has visited both counts, runs of any length allocate the same (nothing per event).
 template <class Method>
@@ -164,7 +164,7 @@ TEST(NoAllocationPerStep, DynamicStateAllocatesOnlyPerRun) {
 
 
 #ifndef STICKSLIP_SANITIZED
-// ExactLinearStepper (issue #19): an oscillator whose stiffness follows a drifting point X, as a
+// ExactLinearStepper: an oscillator whose stiffness follows a drifting point X, as a
 // slipping contact's does, x'' = -w^2 (1 + a X) x, X' = v, with a guard on x (every zero
 // crossing an event that keeps the mode). Its linear part freezes X (A_m changes at every
 // refresh, exact = false: Lawson steps under error control, so step lengths vary), samples come

@@ -1,4 +1,4 @@
-// Regression tests of issue #18 (event engine hardening): the state handed to a transition lies
+// Regression tests of the event engine: the state handed to a transition lies
 // on the switching surface of the guard that fired; RK4 keeps its clock on a grid; runs that
 // cannot advance their clock or their samples are rejected with the cause named.
 
@@ -26,7 +26,7 @@ using stickslip::RungeKutta4;
 using stickslip::StepperOptions;
 using stickslip::test::StickSlipBelt;
 
-// Issue #18.1: with large RK4 steps (and loose Dormand-Prince tolerances) the state at an event
+// With large RK4 steps (and loose Dormand-Prince tolerances) the state at an event
 // was the re-integrated step at the root of the *dense output*, past the guard by the
 // dense-output error (5.6e-7 at RK4 h = 0.2, 1.2e-8 with Dormand-Prince at rtol 1e-5 on the
 // faster belt), not by the event time tolerance. The guard that fired must be within
@@ -67,7 +67,7 @@ TEST(EventStateOnSwitchingSurface, DormandPrinceLooseTolerances) {
     }
 }
 
-// Issue #18.2: RK4 advanced t by the rounded t + h but the state by the unrounded h; over 4e5
+// RK4 advanced t by the rounded t + h but the state by the unrounded h; over 4e5
 // steps the clock drifts by ~1e-10 (final error 2.4e-10 here before the fix). With steps on the
 // grid t_event + k h the final error is that of the method and the event location: RK4's global
 // error ~ T h^4 |x^(5)| ~ 300 * 2.4e-13 * 0.14 ~ 1e-11 at most (measured 3.8e-12), plus 89 event
@@ -116,7 +116,7 @@ TEST(RungeKutta4Clock, StepEndsAreGridTimes) {
   EXPECT_EQ(clock.n, 1000);
 }
 
-// Issue #18.4: runs that cannot advance return or throw at once, naming the cause.
+// Runs that cannot advance return or throw at once, naming the cause.
 template <class Method>
 std::string rejection_message(double t0, double t_end, StepperOptions<double> opt) {
   stickslip::test::Oscillator osc;

@@ -250,7 +250,7 @@ TEST(FixedStep, StiffStuckDamperIsCoveredByTheFreeOscillatorRate) {
   EXPECT_NE(above.message.find("damper 0 slip oscillator sqrt(k/m)"), std::string::npos) << above.message;
 }
 
-// ---- regularised friction slope vs. the explicit stability limit (issue #20 item 7) ------------
+// ---- regularised friction slope vs. the explicit stability limit ------------
 // A regularised damper (tanh, mu 0.3, v_eps 5 mm/s, N0 12 N, m 0.0209 kg, share 1/2) on the
 // paper's platform: its friction force has the slope mu N0 / v_eps = 720 N s/m at V = 0, a
 // viscous damper between the damper (mass s m) and the member, so the sliding velocity relaxes at
@@ -294,7 +294,7 @@ double stable_step_in(const std::string& message) {
   return p == std::string::npos ? std::numeric_limits<double>::quiet_NaN() : std::stod(message.substr(p + key.size()));
 }
 
-// Regression test of issue #20 item 7: linear_rates() had no rate for the regularised slope, so
+// Regression test: linear_rates() had no rate for the regularised slope, so
 // simulate() accepted h = 1e-4 s here and RK4 ran to Success with wrong friction dissipation
 // (test below). The step must be refused naming the damper's regularised slope, with the largest
 // stable step 2.785 / |lambda|, lambda the stiff root of lambda^2 + 2 sigma lambda + k/(s m) = 0.
