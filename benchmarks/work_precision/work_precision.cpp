@@ -105,6 +105,7 @@ struct Trace {
   std::vector<Sample> samples;  ///< over the error window
   std::vector<SwitchEvent> events;
   double energy_rel = kNaN;     ///< |energy-audit residual| / largest term of the audit
+  std::string method;           ///< the method simulate() ran (Integrator::Auto's pick)
 };
 
 /// Records the raw state and mode at the output times inside the error window (flat buffer, no
@@ -189,6 +190,7 @@ Trace run_blade(const Scene& sc, const Config& c) {
   tr.repeats = static_cast<int>(cpu.size());
   tr.status = result.status;
   tr.message = result.message;
+  tr.method = result.method;
   tr.t_end = result.t;
   tr.stats = result.stats;
   for (std::size_t k = 0; k < rec.t.size(); ++k) {
@@ -378,6 +380,11 @@ std::vector<Job> make_jobs(const std::vector<Scene>& scenes) {
                    "v_eps=" + num(ve), ve, T * 1e6);
       j->config.v_eps = ve;
     }
+    // Integrator::Auto (simulate()'s default): the method it picks per scene, at the same rtols.
+    if (!belt)
+      for (double rtol : {1e-4, 1e-6, 1e-8, 1e-10})
+        add("auto", adaptive(Integrator::Auto, rtol, EventLocation::DenseRootFinding), "rtol=" + num(rtol), rtol,
+            T * 4e6 * std::pow(1e-8 / rtol, 0.2));
     if (belt) continue;
     // The exponential method (ExactLinearStepper on the model's linear part): exact in
     // stuck modes (rtol governs only its Lawson steps in the slipping modes with a moving contact),
@@ -728,6 +735,31 @@ int main(int argc, char** argv) {
         md << "not reached down to dt=" << num(finest->value) << " | > " << num(finest->trace.cpu, "%.3g") << " | > "
            << num(finest->trace.cpu / best->trace.cpu, "%.3g") << "x |\n";
       }
+    }
+  }
+  // Integrator::Auto against the fastest of the library's methods on the same model and law (RK4,
+  // DOPRI, Rosenbrock23, exponential; no fewer modes, no regularised law), per tip accuracy.
+  auto same_model_method = [](const Job& j) {
+    return !j.model_variant && j.family != "auto" && j.family.find("modes") == std::string::npos &&
+           j.family.find("regularised") == std::string::npos;
+  };
+  auto is_auto = [](const Job& j) { return j.family == "auto"; };
+  md << "\n### Integrator::Auto against the fastest method reaching the same tip accuracy\n\n"
+        "Ratio = CPU of the cheapest Auto run reaching the target / CPU of the fastest run of any "
+        "method (RK4, DOPRI, Rosenbrock23, exponential; same model and law) reaching it, this run.\n\n"
+        "| scene | target | Auto setting (method run) | CPU [s] | fastest method setting | CPU [s] | ratio |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (std::size_t s = 0; s < scenes.size(); ++s) {
+    if (scenes[s].kind == Kind::Belt) continue;
+    for (double target : {1e-2, 1e-3, 1e-4, 1e-6, 1e-8}) {
+      const Job* a = fastest(jobs, s, target, is_auto);
+      const Job* b = fastest(jobs, s, target, same_model_method);
+      md << "| " << scenes[s].name << " | " << num(target) << " | ";
+      if (a) md << a->setting << " (" << a->trace.method << ") | " << num(a->trace.cpu, "%.3g") << " | ";
+      else md << "not reached | | ";
+      if (b) md << label(*b) << " | " << num(b->trace.cpu, "%.3g") << " | ";
+      else md << "not reached | | ";
+      md << (a && b ? num(a->trace.cpu / b->trace.cpu, "%.3g") + "x" : std::string("-")) << " |\n";
     }
   }
   md << "\n### Model variants (model error against the reference model, DOPRI rtol 1e-10, root finding)\n\n"

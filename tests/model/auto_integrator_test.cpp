@@ -122,6 +122,55 @@ TEST(AutoIntegrator, MovingContactsTakeDormandPrince) {
   EXPECT_EQ(ra.stats.rhs_evaluations, rb.stats.rhs_evaluations);
 }
 
+// The same scene at the paper's 26 N stays stuck: the contacts move only while they slip, so not
+// every mode is exact, but the start mode (both stuck) is, and mode_residence bounds its stick
+// guards above zero until t_end (the forced response of the stuck frame plus the free one from
+// rest). Auto takes the exponential method. Checked independently: Dormand-Prince at rtol 1e-10
+// over the same 0.1 s (20 load periods from rest) finds no event, and the two runs end at the
+// same state to 1e-7 of its size (DOPRI's error at rtol 1e-10 on this 0.1 s, with margin).
+TEST(AutoIntegrator, StuckSceneWithMovingContactsTakesTheExponentialMethod) {
+  const TScene s = make_t_frame(4);
+  System sys(s.frame, s.basis, paper_dampers(s, 26.0), paper_load(s));
+  EXPECT_FALSE(sys.every_mode_exact());
+  System::State x0 = sys.initial_state();
+  DamperStates mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+  const IntegratorChoice choice = choose_integrator(sys, mode, 0.0, x0, 0.1, 1e-10);
+  EXPECT_EQ(choice.integrator, Integrator::Exponential) << choice.reason;
+  EXPECT_NE(choice.reason.find("guards stay positive"), std::string::npos) << choice.reason;
+
+  System a(s.frame, s.basis, paper_dampers(s, 26.0), paper_load(s));
+  System b(s.frame, s.basis, paper_dampers(s, 26.0), paper_load(s));
+  Recorder ra_rec, rb_rec;
+  RunOptions<double> opt;
+  opt.stepper.rtol = 1e-10;
+  opt.stepper.atol = 1e-14;
+  const auto ra = run_from_rest(a, 0.1, opt, ra_rec);
+  opt.integrator = Integrator::DormandPrince54;
+  const auto rb = run_from_rest(b, 0.1, opt, rb_rec);
+  ASSERT_TRUE(ra.ok()) << ra.message;
+  ASSERT_TRUE(rb.ok()) << rb.message;
+  EXPECT_EQ(ra.method, "exponential") << ra.method_reason;
+  EXPECT_EQ(rb_rec.events.size(), 0u) << "the independent run left the stuck mode";
+  EXPECT_EQ(ra_rec.events.size(), 0u);
+  const Eigen::Index n = a.num_modes();
+  const double scale = rb.x.head(2 * n).cwiseAbs().maxCoeff();
+  EXPECT_LE((ra.x.head(2 * n) - rb.x.head(2 * n)).cwiseAbs().maxCoeff(), 1e-7 * scale);
+}
+
+// At 3 N the same scene slips within the run: the bound of its stick guards reaches zero and Auto
+// keeps Dormand-Prince, naming the guard that may fire.
+TEST(AutoIntegrator, SceneThatMaySlipKeepsDormandPrince) {
+  const TScene s = make_t_frame(4);
+  System sys(s.frame, s.basis, paper_dampers(s, 3.0), paper_load(s));
+  System::State x0 = sys.initial_state();
+  DamperStates mode = sys.requested_mode();
+  ASSERT_TRUE(sys.make_consistent(mode, 0.0, x0));
+  const IntegratorChoice choice = choose_integrator(sys, mode, 0.0, x0, 0.1, 1e-8);
+  EXPECT_EQ(choice.integrator, Integrator::DormandPrince54) << choice.reason;
+  EXPECT_NE(choice.reason.find("may fire"), std::string::npos) << choice.reason;
+}
+
 // A regularised law with a steep slope at V = 0: its real rate is 1e5 x the fastest rate to
 // resolve, far above 33 / rtol^(1/3) = 711 at rtol 1e-4: Rosenbrock23.
 TEST(AutoIntegrator, SteepRegularisedLawIsStiffAndTakesRosenbrock23) {

@@ -6,6 +6,7 @@
 #include "stickslip/detail/validate.hpp"
 #include "stickslip/ode/detail/step_control.hpp"
 #include "stickslip/ode/linear_part.hpp"
+#include "stickslip/ode/mode_residence.hpp"
 #include "stickslip/ode/step_rate.hpp"
 
 #include <algorithm>
@@ -115,6 +116,10 @@ constexpr double kImplicitStepCost = 10.0;
 ///     every_mode_exact() when it has one (FrictionDampedSystem: no time_function load, every
 ///     contact fixed and every law a CoulombLaw), else linear_part of the start mode reports
 ///     exact. Within a mode the method is then exact; its cost does not depend on the tolerance.
+///     Also Exponential when not every mode is exact but the start mode is, with affine guards
+///     that mode_residence proves positive until t_end (a scene that stays stuck, from its forced
+///     response and a bound of its free response): the run never leaves that mode. Costs one
+///     eigen-decomposition of the mode's A.
 ///  2. Rosenbrock23 when the system reports rates (step_rates(), else linear_rates()) and the
 ///     fastest one that decays without oscillating (Re lambda < 0, |Im lambda| <= |Re lambda|),
 ///     |lambda_d|, holds Dormand-Prince 10x below the step Rosenbrock23 needs for accuracy:
@@ -125,7 +130,8 @@ constexpr double kImplicitStepCost = 10.0;
 ///     implicit one takes 10x fewer steps (detail::kImplicitStepCost: its step is dearer): the
 ///     problem is stiff at this tolerance.
 ///  3. DormandPrince54 otherwise.
-/// Costs one linear_part call (rule 1 without every_mode_exact) and one rates call.
+/// Costs one linear_part call (rule 1 without every_mode_exact, rule 1b with it), one
+/// eigen-decomposition (rule 1b) and one rates call.
 template <class System>
 IntegratorChoice choose_integrator(System& system, const typename System::Mode& mode,
                                    typename System::Scalar t0, const typename System::State& x0,
@@ -150,6 +156,23 @@ IntegratorChoice choose_integrator(System& system, const typename System::Mode& 
       c.integrator = Integrator::Exponential;
       c.reason = why + ": exponential method";
       return c;
+    }
+    if constexpr (detail::has_every_mode_exact<System>::value) {
+      // Rule 1b: the run provably stays in an exact start mode (a stuck scene).
+      LinearPart<Scalar> lp;
+      if (system.linear_part(mode, t0, x0, lp) && lp.exact) {
+        const ModeResidence<Scalar> stay = mode_residence(lp, t0, x0, t_end);
+        if (stay.stays) {
+          c.integrator = Integrator::Exponential;
+          c.reason = why + ", but the start mode is exactly linear and its guards stay positive until "
+                     "t_end (lowest bound " + detail::short_number(stay.lower[stay.tightest]) +
+                     ", guard " + std::to_string(stay.tightest) + "): exponential method";
+          return c;
+        }
+        why += stay.bounded ? "; the start mode is exact but guard " + std::to_string(stay.tightest) +
+                                  " may fire (bound " + detail::short_number(stay.lower[stay.tightest]) + ")"
+                            : "; the start mode is exact (" + stay.why_not + ")";
+      }
     }
     c.reason = why;
   } else {

@@ -15,6 +15,7 @@
 /// special cases.
 
 #include <stickslip/detail/validate.hpp>
+#include <stickslip/ode/detail/balance.hpp>
 #include <stickslip/ode/detail/pade_exponential.hpp>
 #include <stickslip/ode/linear_part.hpp>
 
@@ -421,36 +422,7 @@ class AugmentedFlow {
     m.array().rowwise() /= scale.transpose().array();
   }
   // m <- D^-1 m D (see balance()), the powers of 2 of D into scale.
-  static void balance_in_place(Matrix& m, Vector& scale) {
-    const Eigen::Index d = m.rows();
-    scale.setOnes(d);
-    for (int sweep = 0; sweep < 32; ++sweep) {
-      bool done = true;
-      for (Eigen::Index i = 0; i < d; ++i) {
-        Scalar c = m.col(i).cwiseAbs().sum() - std::abs(m(i, i));
-        Scalar r = m.row(i).cwiseAbs().sum() - std::abs(m(i, i));
-        if (!(c > 0) || !(r > 0)) continue;
-        const Scalar total = c + r;
-        Scalar f = 1;
-        while (c < r / 2) {
-          c *= 2;
-          r /= 2;
-          f *= 2;
-        }
-        while (c >= r * 2) {
-          c /= 2;
-          r *= 2;
-          f /= 2;
-        }
-        if (c + r >= Scalar(0.95) * total) continue;
-        done = false;
-        scale[i] *= f;
-        m.col(i) *= f;
-        m.row(i) /= f;
-      }
-      if (done) break;
-    }
-  }
+  static void balance_in_place(Matrix& m, Vector& scale) { balance_by_powers_of_two(m, scale); }
 
   struct Entry {
     Matrix a, bal;
