@@ -2,5 +2,5 @@
 // on it (each method, the exponential run, the dispatcher).
 #include <stickslip/model/detail/compiled_contact_system.hpp>
 
-STICKSLIP_DETAIL_CONTACT_MEMBERS(, stickslip::detail::CompiledPointContactSystem)
+STICKSLIP_DETAIL_CONTACT_MEMBERS(, stickslip::ContactSystem<double>)
 STICKSLIP_DETAIL_CONTACT_SIMULATE(, stickslip::detail::CompiledPointContactSystem)

@@ -32,7 +32,9 @@ using CompiledBodyContactSystem = ContactSystem<double, BodyContact<double>>;
 /// Declares (EXTERN = extern) or defines (EXTERN empty) the instantiation of each member of
 /// SYSTEM defined outside the class body, but for the members of contacts with a rigid-body
 /// side, which a PointContact system never calls (`template class` would compile them too, and
-/// they do not compile for a contact without that side).
+/// they do not compile for a contact without that side). SYSTEM is a template-id (a typedef may
+/// not qualify an explicit instantiation) without a leading :: (which would bind to the return
+/// type before it): stickslip::ContactSystem<double>.
 #define STICKSLIP_DETAIL_CONTACT_MEMBERS(EXTERN, SYSTEM)                                         \
   EXTERN template SYSTEM::ContactSystem(const ::stickslip::FrameModel<double>&,                 \
                                         const ::stickslip::ModalBasis<double>&,                  \
@@ -62,7 +64,7 @@ using CompiledBodyContactSystem = ContactSystem<double, BodyContact<double>>;
                                            ::stickslip::LinearPart<double>&);                    \
   EXTERN template bool SYSTEM::exact_mode(const SYSTEM::Mode&) const;
 
-STICKSLIP_DETAIL_CONTACT_MEMBERS(extern, stickslip::detail::CompiledPointContactSystem)
+STICKSLIP_DETAIL_CONTACT_MEMBERS(extern, stickslip::ContactSystem<double>)
 namespace stickslip {
 extern template class ContactSystem<double, BodyContact<double>>;
 }  // namespace stickslip
