@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs every stickslip test: installs missing Debian packages, then configures, builds and runs
-# CTest twice:
+# CTest in two build trees:
 # - an AddressSanitizer + UBSan build (-O1 -DNDEBUG), compiled by Clang 14 when it is installed
 #   (scripts/deps.sh test installs it; Clang instruments and compiles the suite in about half the
 #   CPU time GCC takes, docs/compiled.md), which runs every unit test;
@@ -10,6 +10,11 @@
 #   the cases the sanitizer build scales down (STICKSLIP_TEST_SPLIT, cmake/StickslipWarnings.cmake).
 # Each unit test thus runs once, in the build that checks the most; compilation is what the run's
 # time is made of. A plain `ctest` in one's own build tree (STICKSLIP_TEST_SPLIT off) runs all.
+# The two suites run at the same time, each with one job per core: the cores idle in one suite
+# (its longest units at the end of its build, its serial tests) work for the other, and the
+# command takes about the two suites' CPU time over the number of cores. The normal suite prints
+# to the terminal, the sanitizer suite to build/sanitize.log (printed when it ends).
+# STICKSLIP_TEST_SEQUENTIAL=1 runs them one after the other (about half the peak memory).
 # Exits non-zero on any failure. Build trees: build/test and build/sanitize.
 # The benchmarks are built by scripts/work_precision.sh (and by any build with
 # -DSTICKSLIP_BUILD_BENCHMARKS=ON); set STICKSLIP_TEST_BENCHMARKS=1 to build them here too.
@@ -26,11 +31,12 @@ run_suite() {  # name, extra cmake args...
   if [ ! -f "build/${name}/CMakeCache.txt" ] && command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
   local t0 t1 t2 t3
   t0=$(date +%s)
-  cmake -S . -B "build/${name}" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_WARNINGS_AS_ERRORS=ON "$@"
+  # Each step returns on failure itself (set -e does not act in a function called under ||).
+  cmake -S . -B "build/${name}" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release -DSTICKSLIP_WARNINGS_AS_ERRORS=ON "$@" || return
   t1=$(date +%s)
-  cmake --build "build/${name}" -j "${jobs}"
+  cmake --build "build/${name}" -j "${jobs}" || return
   t2=$(date +%s)
-  (cd "build/${name}" && ctest --output-on-failure -j "${jobs}")
+  (cd "build/${name}" && ctest --output-on-failure -j "${jobs}") || return
   t3=$(date +%s)
   echo "stickslip: ${name} suite: configure $((t1 - t0)) s, build $((t2 - t1)) s, tests $((t3 - t2)) s"
 }
@@ -40,10 +46,39 @@ scripts/deps.sh test
 echo "stickslip: packages checked in $(( $(date +%s) - start )) s"
 benchmarks=OFF
 if [ "${STICKSLIP_TEST_BENCHMARKS:-0}" = "1" ]; then benchmarks=ON; fi
-run_suite test "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DSTICKSLIP_BUILD_BENCHMARKS=${benchmarks} \
-          -DSTICKSLIP_BUILD_EXAMPLES=ON -DSTICKSLIP_TEST_SPLIT=ON
 sanitize_cxx=()
 if command -v clang++-14 >/dev/null 2>&1; then sanitize_cxx=(-DCMAKE_CXX_COMPILER=clang++-14); fi
-run_suite sanitize "-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "${sanitize_cxx[@]}" -DSTICKSLIP_SANITIZE=ON -DSTICKSLIP_BUILD_BENCHMARKS=OFF \
-          -DSTICKSLIP_BUILD_EXAMPLES=OFF -DSTICKSLIP_HEADER_HYGIENE=OFF -DSTICKSLIP_TEST_SPLIT=ON
+sanitize_args=("-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" "${sanitize_cxx[@]}" -DSTICKSLIP_SANITIZE=ON
+               -DSTICKSLIP_BUILD_BENCHMARKS=OFF -DSTICKSLIP_BUILD_EXAMPLES=OFF -DSTICKSLIP_HEADER_HYGIENE=OFF
+               -DSTICKSLIP_TEST_SPLIT=ON)
+normal_args=("-DCMAKE_CXX_FLAGS_RELEASE=-O1 -DNDEBUG" -DSTICKSLIP_BUILD_BENCHMARKS=${benchmarks}
+             -DSTICKSLIP_BUILD_EXAMPLES=ON -DSTICKSLIP_TEST_SPLIT=ON)
+
+if [ "${STICKSLIP_TEST_SEQUENTIAL:-0}" = "1" ]; then
+  run_suite test "${normal_args[@]}"
+  run_suite sanitize "${sanitize_args[@]}"
+  echo "stickslip: all test suites passed in $(( $(date +%s) - start )) s"
+  exit 0
+fi
+
+mkdir -p build
+sanitize_log=build/sanitize.log
+# Its own session (setsid), so that an interrupt or a failure here stops its whole tree of jobs.
+export -f run_suite
+export jobs
+setsid bash -c 'set -euo pipefail; run_suite sanitize "$@"' run_suite "${sanitize_args[@]}" > "${sanitize_log}" 2>&1 &
+sanitize_pid=$!
+trap 'kill -- -"${sanitize_pid}" 2>/dev/null || true' INT TERM
+echo "stickslip: the sanitizer suite runs alongside, output in ${sanitize_log}"
+normal_status=0
+run_suite test "${normal_args[@]}" || normal_status=$?
+sanitize_status=0
+wait "${sanitize_pid}" || sanitize_status=$?
+trap - INT TERM
+echo "=== stickslip: sanitizer suite (${sanitize_log}) ==="
+cat "${sanitize_log}"
+if [ "${normal_status}" != 0 ] || [ "${sanitize_status}" != 0 ]; then
+  echo "stickslip: FAILED (normal suite exit ${normal_status}, sanitizer suite exit ${sanitize_status})" >&2
+  exit 1
+fi
 echo "stickslip: all test suites passed in $(( $(date +%s) - start )) s"

@@ -33,4 +33,13 @@ extern template class Shooting<FrictionDampedSystem<double>>;
 extern template class Continuation<FrictionDampedSystem<double>>;
 extern template class SplitContinuation<FrictionDampedSystem<double>>;
 }  // namespace stickslip
+// run_period and Shooting on ContactSystem<double> (PointContact; src/contact_steady_state.cpp).
+#include "stickslip/model/detail/compiled_contact_system.hpp"
+
+#define STICKSLIP_DETAIL_CONTACT_STEADY_STATE(EXTERN, SYSTEM)                                    \
+  EXTERN template ::stickslip::PeriodRun<SYSTEM> stickslip::run_period<SYSTEM>(                  \
+      SYSTEM&, const SYSTEM::Mode&, double, const SYSTEM::State&, double,                        \
+      const ::stickslip::ShootingOptions<double>&, bool);
+STICKSLIP_DETAIL_CONTACT_STEADY_STATE(extern, stickslip::detail::CompiledPointContactSystem)
+extern template class stickslip::Shooting<stickslip::ContactSystem<double>>;
 #endif

@@ -316,3 +316,9 @@ class ContactSystem {
 
 #include <stickslip/model/detail/contact_system_impl.hpp>
 #include <stickslip/model/detail/contact_system_linear.hpp>
+
+#ifdef STICKSLIP_COMPILED
+// The compiled mode (docs/compiled.md): ContactSystem<double, C> of the three contact kinds and
+// simulate()'s runs on them are instantiated once, in stickslip::compiled.
+#include <stickslip/model/detail/compiled_contact_system.hpp>
+#endif
