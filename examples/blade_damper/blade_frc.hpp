@@ -147,8 +147,14 @@ struct FrcPoint {
   /// nonsmooth point); then the restarts past a stall (FrcSettings::restarts), numbered on.
   int segment = 0;
   /// The orbit's period in forcing periods: 1, or k > 1 for a subharmonic orbit (period k T)
-  /// found after a restart where the response repeats every k periods (FrcSettings::restarts).
+  /// found after a restart where the response repeats every k periods (FrcSettings::restarts),
+  /// or born at a flip of a period-k T branch (period 2 k T).
   int period = 1;
+  /// Which branch the point is on: "period_1" (the branch from f_lo and its parts),
+  /// "subharmonic" (a restart's period-k T segment, k > 1), "restart" (a restart's period-1
+  /// segment) or "period_doubled" (the period-2k T branch born at a flip of a period-k T one,
+  /// stickslip::PeriodDoubling; FrcSettings::switch_points).
+  std::string kind = "period_1";
 };
 
 /// Where a restart found no periodic response (stickslip::poincare_sections: no k <= 8): the
@@ -187,8 +193,14 @@ struct FrcBranch {
     std::string kind;
     double frequency_hz = 0;
     bool destabilising = true;
+    /// At a period doubling: the period-2T branch started there ("period-2T branch, segment n:
+    /// m points, <status>") or why it was not (FrcSettings::switch_points).
+    std::string switched;
   };
   std::vector<Bifurcation> bifurcations;
+  /// The period-doubled branches' points (kind "period_doubled"), kept apart until the restarts
+  /// are done (they do not count as computed spans there), then appended to `points`.
+  std::vector<FrcPoint> switched;
   /// Points in separate segments (FrcPoint::segment > 0).
   std::size_t separate_points() const {
     return static_cast<std::size_t>(
@@ -300,6 +312,20 @@ struct FrcSettings {
   /// The orbits' period in forcing periods (k T): 1, or k > 1 for a branch of subharmonic orbits
   /// (set by a restart whose Poincaré sections repeat every k periods).
   int period_multiple = 1;
+  /// Branch switching at period doublings: at each flip of a branch (a multiplier through -1)
+  /// the flip is located (stickslip::PeriodDoubling::locate_flip, |mu + 1| <= 1e-6) and the
+  /// branch of period-2k T orbits born there is continued for at most this many points
+  /// (0: no switching).
+  int switch_points = 40;
+  /// The first 2k T orbit's arclength from the flip, as a fraction of the state scale of the
+  /// arclength norm (frc_state_scale): large enough that it differs from the period-k T orbit
+  /// by far more than Newton's tolerance, small enough for Newton from a straight step.
+  double switch_offset = 0.02;
+  /// Transient sweeps from rest, up and down in frequency (blade_settle.hpp frequency_sweep), at
+  /// this many uniform frequencies of [f_lo, f_hi] each (0: none): what the structure reaches,
+  /// each frequency's response with its period, overlaid on the branches (frc_sweep.csv).
+  int sweep_points = 0;
+  int sweep_settle_periods = 150;  ///< forcing periods each sweep frequency settles for
 };
 
 /// Parses `--frc lo:hi` (Hz, 0 < lo < hi) into default settings with that range.
@@ -477,6 +503,49 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   auto elapsed = [&wall0] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   };
+  // Branch switching at each period doubling of the branch (FrcSettings::switch_points): the flip
+  // located, the period-2k T branch started along the multiplier's eigenvector and continued
+  // away from it; its points go to b.switched, numbered by flip (segment 1, 2, ...).
+  auto switch_at_flips = [&](const stickslip::ContinuationResult<System>& branch) {
+    if (s.switch_points <= 0) return;
+    int flips = 0;
+    for (const auto& bif : branch.bifurcations) {
+      if (bif.kind != stickslip::BifurcationKind::PeriodDoubling || bif.before + 1 >= branch.points.size()) continue;
+      auto it = std::find_if(b.bifurcations.begin(), b.bifurcations.end(), [&](const FrcBranch::Bifurcation& x) {
+        return x.kind == "period_doubling" && x.frequency_hz == bif.parameter * unit / (2 * M_PI);
+      });
+      std::string note;
+      stickslip::ContinuationOptions<double> c2 = co;
+      c2.max_points = s.switch_points;
+      stickslip::PeriodDoubling<System> pd(*scene.system, set_parameter, period_of, opt, c2);
+      pd.start_mode(blade_start_mode);
+      const auto flip = pd.locate_flip(branch.points[bif.before], branch.points[bif.before + 1], 1e-6);
+      if (!flip.ok) {
+        note = "not switched: " + flip.message;
+      } else {
+        const auto two = pd.period_doubled_branch(flip, s.switch_offset * state_scale);
+        ++flips;
+        std::size_t kept = 0;
+        for (const auto& pt : two.points) {
+          FrcPoint f = make_point(pt, cpu_last);
+          f.period = 2 * k_T;
+          f.kind = "period_doubled";
+          f.segment = flips;
+          b.switched.push_back(f);
+          ++kept;
+          if (progress) progress(f);
+        }
+        char t[200];
+        std::snprintf(t, sizeof t, "period-%dT branch from the flip at %.4f Hz: %zu points, %s%s%s", 2 * k_T,
+                      flip.parameter * unit / (2 * M_PI), kept, stickslip::to_string(two.status),
+                      two.message.empty() ? "" : ": ", two.message.c_str());
+        note = t;
+      }
+      std::printf("frc N0 %g N: %s\n", b.preload, note.c_str());
+      std::fflush(stdout);
+      if (it != b.bifurcations.end()) it->switched = note;
+    }
+  };
   if (s.parts <= 1) {
     stickslip::Continuation<System> cont(*scene.system, set_parameter, period_of, opt, co);
     cont.start_mode(blade_start_mode);
@@ -486,9 +555,10 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
     });
     const auto result = cont.run(start.mode, start.t0, start.x0, w_lo / unit);
     for (const auto& bif : result.bifurcations)
-      b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
+      b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising, {}});
     b.status = stickslip::to_string(result.status);
     b.message = result.message;
+    switch_at_flips(result);
     b.cpu_seconds = stickslip::detail::thread_cpu_seconds() - cpu0;
     b.wall_seconds = elapsed();
     return b;
@@ -521,7 +591,7 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
   b.status = stickslip::to_string(result.branch.status);
   b.message = result.branch.message;
   for (const auto& bif : result.branch.bifurcations)
-    b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising});
+    b.bifurcations.push_back({stickslip::to_string(bif.kind), bif.parameter * unit / (2 * M_PI), bif.destabilising, {}});
   b.parts = result.parts;
   for (auto& part : b.parts) part.start_parameter *= unit / (2 * M_PI);  // in Hz
   b.cpu_seconds = cpu_before;
@@ -539,6 +609,9 @@ inline FrcBranch frc_branch(BladeScene& scene, const FrcSettings& s, double stat
         b.points.push_back(f);
       }
   *scene.system = systems[last];  // as the single Continuation leaves it
+  const double cpu_switch = stickslip::detail::thread_cpu_seconds();
+  switch_at_flips(result.branch);
+  b.cpu_seconds += stickslip::detail::thread_cpu_seconds() - cpu_switch;
   b.wall_seconds = elapsed();
   return b;
 }
@@ -598,14 +671,14 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
   {
     std::ofstream o(out / "frc.csv");
     o << "preload_N,frequency_hz,tip_amplitude_m,tip_max_abs_m,stable,instability,max_multiplier,regime,stick_fraction_1,"
-         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s,segment,period_T\n";
+         "stick_fraction_2,switches_per_period_1,switches_per_period_2,newton_runs,residual,cpu_s,segment,period_T,kind\n";
     for (const auto& b : branches)
       for (const auto& f : b.points)
         o << fmt(f.preload) << ',' << fmt(f.omega / (2 * M_PI)) << ',' << fmt(f.tip_amplitude) << ',' << fmt(f.tip_max_abs) << ','
           << (f.stable ? 1 : 0) << ',' << f.instability << ',' << fmt(f.max_multiplier) << ',' << f.regime << ','
           << fmt(f.stick_fraction[0]) << ',' << fmt(f.stick_fraction[1]) << ',' << fmt(f.switches_per_period[0])
           << ',' << fmt(f.switches_per_period[1]) << ',' << f.iterations << ',' << fmt(f.residual) << ','
-          << fmt(f.cpu_seconds) << ',' << f.segment << ',' << f.period << '\n';
+          << fmt(f.cpu_seconds) << ',' << f.segment << ',' << f.period << ',' << f.kind << '\n';
   }
   {  // the restarts' frequencies without a periodic response: the tip amplitude per period
     std::ofstream o(out / "frc_poincare.csv");
@@ -653,13 +726,37 @@ inline void write_frc(const std::filesystem::path& out, const BladeParameters& p
     for (std::size_t q = 0; q < b.bifurcations.size(); ++q)
       j << (q ? ", " : "") << "{\"kind\": \"" << b.bifurcations[q].kind << "\", \"frequency_hz\": "
         << jnum(b.bifurcations[q].frequency_hz) << ", \"destabilising\": " << (b.bifurcations[q].destabilising ? "true" : "false")
+        << (b.bifurcations[q].switched.empty() ? "" : ", \"switched\": \"" + json_escape(b.bifurcations[q].switched) + "\"")
         << "}";
     j << "]"
       << ", \"all_stuck_frequencies_hz\": " << list(b.stuck_hz) << ", \"frictionless_frequencies_hz\": " << list(b.free_hz);
-    if (peak < b.points.size())  // stable orbits only (frc_peak.hpp)
+    if (peak < b.points.size())  // stable orbits of every segment only (frc_peak.hpp)
       j << ", \"peak_tip_m\": " << jnum(b.points[peak].tip_amplitude)
-        << ", \"peak_frequency_hz\": " << jnum(b.points[peak].omega / (2 * M_PI));
-    j << "}";
+        << ", \"peak_frequency_hz\": " << jnum(b.points[peak].omega / (2 * M_PI)) << ", \"peak_period_T\": "
+        << b.points[peak].period << ", \"peak_kind\": \"" << b.points[peak].kind << "\"";
+    // Per segment: its kind and period, frequency span, points and its largest stable amplitude.
+    j << ", \"segments\": [";
+    std::vector<int> seen;
+    for (const FrcPoint& f : b.points) {
+      if (std::find(seen.begin(), seen.end(), f.segment) != seen.end()) continue;
+      seen.push_back(f.segment);
+      double lo = HUGE_VAL, hi = -HUGE_VAL, top = -1;
+      std::size_t n = 0, stable = 0;
+      for (const FrcPoint& g : b.points) {
+        if (g.segment != f.segment) continue;
+        const double hz = g.omega / (2 * M_PI);
+        lo = std::min(lo, hz);
+        hi = std::max(hi, hz);
+        ++n;
+        if (g.stable) ++stable, top = std::max(top, g.tip_amplitude);
+      }
+      j << (seen.size() > 1 ? ", " : "") << "{\"segment\": " << f.segment << ", \"kind\": \"" << f.kind
+        << "\", \"period_T\": " << f.period << ", \"from_hz\": " << jnum(lo) << ", \"to_hz\": " << jnum(hi)
+        << ", \"points\": " << n << ", \"stable_points\": " << stable;
+      if (top >= 0) j << ", \"peak_stable_tip_m\": " << jnum(top);
+      j << "}";
+    }
+    j << "]}";
   }
   j << "\n  ]\n}\n";
 }
@@ -818,6 +915,7 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     double seg_lo = HUGE_VAL, seg_hi = -HUGE_VAL;
     for (FrcPoint f : next.points) {
       f.segment = segment;
+      f.kind = sr.period_multiple > 1 ? "subharmonic" : "restart";
       b.points.push_back(f);
       const double hz = f.omega / (2 * M_PI);
       f_far = std::max(f_far, hz);
@@ -831,6 +929,12 @@ inline void frc_restarts(BladeScene& scene, const FrcSettings& s, FrcBranch& b,
     b.status = next.status;
     b.message = next.message;
     b.bifurcations.insert(b.bifurcations.end(), next.bifurcations.begin(), next.bifurcations.end());
+    int flips = 0;  // the restart's period-doubled branches numbered after those found so far
+    for (const FrcPoint& f : b.switched) flips = std::max(flips, f.segment);
+    for (FrcPoint f : next.switched) {
+      f.segment += flips;
+      b.switched.push_back(f);
+    }
     b.cpu_seconds += next.cpu_seconds;
     b.wall_seconds += next.wall_seconds;
     again = (next.status == "step_too_small" || next.status == "start_failed" ||
@@ -879,6 +983,15 @@ inline int run_frc(BladeParameters p, const std::vector<double>& preloads, const
     };
     auto b = frc_branch(sc, s, frc_state_scale(sc, s), progress);
     frc_restarts(sc, s, b, progress);
+    {  // the period-doubled branches as separate segments after the branch's and the restarts'
+      int last = 0;
+      for (const FrcPoint& f : b.points) last = std::max(last, f.segment);
+      for (FrcPoint f : b.switched) {
+        f.segment += last;
+        b.points.push_back(f);
+      }
+      b.switched.clear();
+    }
     std::printf("frc N0 %g N: %s, %zu points (%zu of them in separate segments), %.1f s CPU, %.1f s elapsed%s%s\n", n0,
                 b.status.c_str(), b.points.size(), b.separate_points(), b.cpu_seconds, b.wall_seconds,
                 b.message.empty() ? "" : ": ", b.message.c_str());

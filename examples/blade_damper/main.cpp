@@ -7,6 +7,7 @@
 #include "blade_optimal.hpp"
 #include "blade_regime.hpp"
 #include "blade_run.hpp"
+#include "blade_settle.hpp"
 #include "blade_scene.hpp"
 #include "blade_sweep.hpp"
 
@@ -118,13 +119,30 @@ Usage: blade_damper [options]
                          the tip amplitude per period (OUT/frc_poincare.csv) and
                          the next try a gap further; at most n tries (default 8;
                          0: none)
+  --frc-switch-points n  (after --frc) at each period doubling of a branch, the period-2T
+                         branch born there, continued for at most n points (default 40;
+                         0: no branch switching)
+  --frc-sweep n          (after --frc) also sweeps of transients up and down in frequency
+                         over n frequencies each (the first from rest, each next from the
+                         state the last left): the response reached and its period k
+                         (OUT/frc_sweep.csv, drawn over the branches; default 0: none)
+  --frc-sweep-settle P   (after --frc-sweep) forcing periods per sweep frequency (default 150)
   --frc-variational      (after --frc) the variational monodromy (the default)
   --frc-finite-difference  (after --frc) the finite-difference monodromy where the branch
                          starts with events (variational for one stuck all period)
-  --optimise-preload lo:hi  the preload in lo..hi N minimising the resonant tip amplitude
-                         (max over frequency of the periodic orbit's): log grid + golden
-                         sections (OUT/optimal.csv, optimal_peaks.csv, optimal.json;
-                         docs/steady_state.md); modal damping 0.05 unless --damping
+  --optimise-preload lo:hi  the preload in lo..hi N minimising the resonant tip amplitude:
+                         the largest stable response over frequency (the period-1 orbit and
+                         what a transient from rest settles on, subharmonics included): log
+                         grid + golden sections in N0 (OUT/optimal.csv, optimal_peaks.csv,
+                         optimal.json; docs/howto/frequency_response.md); modal damping 0.05
+                         unless --damping; in parallel on --threads
+  --optimise-step h      (after --optimise-preload) frequency grid step [Hz] (default 0.5)
+  --optimise-refine h    (after --optimise-preload) refine the best grid frequency to h [Hz]
+                         (default 0.05; 0: no refinement)
+  --optimise-settle P    (after --optimise-preload) forcing periods of each transient from
+                         rest (default 150)
+  --optimise-frequencies lo:hi  (after --optimise-preload) this frequency range [Hz] at every
+                         preload instead of the lowest resonance's bracket
   --threads n            worker threads of the sweep (default: all cores)
   --out DIR              output folder (default out)
   --help                 this text
@@ -222,6 +240,33 @@ Cli parse(int argc, char** argv) {
     } else if (a == "--frc-restarts") {
       if (!c.frc) throw std::invalid_argument("--frc-restarts must follow --frc");
       c.frc->restarts = integer(0);
+    } else if (a == "--frc-switch-points") {
+      if (!c.frc) throw std::invalid_argument("--frc-switch-points must follow --frc");
+      c.frc->switch_points = integer(0);
+    } else if (a == "--frc-sweep") {
+      if (!c.frc) throw std::invalid_argument("--frc-sweep must follow --frc");
+      c.frc->sweep_points = integer(0, std::numeric_limits<int>::max(), "0: none; else >= 2");
+      if (c.frc->sweep_points == 1) throw std::invalid_argument("--frc-sweep needs 0 or at least 2 frequencies");
+    } else if (a == "--frc-sweep-settle") {
+      if (!c.frc) throw std::invalid_argument("--frc-sweep-settle must follow --frc");
+      c.frc->sweep_settle_periods = integer(1);
+    } else if (a == "--optimise-step" || a == "--optimise-refine") {
+      if (!c.optimal) throw std::invalid_argument(a + " must follow --optimise-preload");
+      const double h = number();
+      if (!(h > 0) && !(a == "--optimise-refine" && h == 0))
+        throw std::invalid_argument(a + " must be > 0" + (a == "--optimise-refine" ? " or 0" : std::string()));
+      (a == "--optimise-step" ? c.optimal->step_hz : c.optimal->refine_hz) = h;
+    } else if (a == "--optimise-settle") {
+      if (!c.optimal) throw std::invalid_argument("--optimise-settle must follow --optimise-preload");
+      c.optimal->settle.settle_periods = integer(1);
+    } else if (a == "--optimise-frequencies") {
+      if (!c.optimal) throw std::invalid_argument("--optimise-frequencies must follow --optimise-preload");
+      const std::string text = need(i);
+      double lo = 0, hi = 0;
+      if (std::sscanf(text.c_str(), "%lf:%lf", &lo, &hi) != 2 || !(lo > 0) || !(hi > lo))
+        throw std::invalid_argument("--optimise-frequencies expects lo:hi [Hz] with 0 < lo < hi, got " + text);
+      c.optimal->f_lo = lo;
+      c.optimal->f_hi = hi;
     } else if (a == "--frc-variational") {
       if (!c.frc) throw std::invalid_argument("--frc-variational must follow --frc");
       c.frc->finite_difference_monodromy = false;
@@ -520,8 +565,15 @@ int main(int argc, char** argv) {
     fs::create_directories(c.out);
     const fs::path out(c.out);
     if (!c.compare.empty()) return run_compare(c, out);
-    if (c.frc) return blade::run_frc(c.params, c.preloads, *c.frc, out);
-    if (c.optimal) return blade::run_optimal_preload(c.params, *c.optimal, out);
+    if (c.frc) {
+      const int rc = blade::run_frc(c.params, c.preloads, *c.frc, out);
+      blade::run_frc_sweeps(c.params, c.preloads, *c.frc, out);
+      return rc;
+    }
+    if (c.optimal) {
+      c.optimal->threads = c.threads;
+      return blade::run_optimal_preload(c.params, *c.optimal, out);
+    }
     std::printf("blade_damper: paper section 3 parameters, %d modes, %d + %d elements, integrator %s "
                 "(rtol %.0e), duration %.1f s, output in %s/\n",
                 c.params.modes, c.params.blade_elements, c.params.platform_elements,

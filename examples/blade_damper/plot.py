@@ -203,10 +203,17 @@ def plot_compare(out):
     return [png]
 
 
+# frc.csv's kind column: which branch a segment is on
+KIND_LABEL = {"period_1": "segment", "restart": "restart's segment", "subharmonic": "subharmonic segment",
+              "period_doubled": "period-doubled branch"}
+
+
 def plot_frc(out):
     """frc.csv and frc_linear.csv (blade_damper --frc): tip amplitude against excitation frequency per
-    preload, solid where stable and dashed where unstable, markers coloured by regime, with the
-    linear all-stuck and frictionless (mu = 0) curves at each preload (thin, same colour)."""
+    preload, solid where stable and dashed where unstable, markers coloured by regime, every branch
+    found (period 1, subharmonic restarts, period-doubled branches: line width by kind), with the
+    linear all-stuck and frictionless (mu = 0) curves at each preload (thin, same colour) and, with
+    frc_sweep.csv (--frc-sweep), the responses of the transient sweeps up and down."""
     path = os.path.join(out, "frc.csv")
     if not os.path.exists(path):
         return []
@@ -236,11 +243,15 @@ def plot_frc(out):
             if segment[i] != segment[i + 1]:
                 continue
             label = None
+            kind = pts[i].get("kind", "period_1") or "period_1"
             if i == 0:
                 label = f"N0 = {n0:g} N"
             elif segment[i] > 0 and segment[i - 1] != segment[i]:
-                label = f"N0 = {n0:g} N, separate segment from {f[i]:.2f} Hz"
-            ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=1.4 if segment[i] == 0 else 1.0,
+                what = KIND_LABEL.get(kind, "separate segment")
+                label = f"N0 = {n0:g} N, {what} (period {pts[i].get('period_T', '1')} T) from {f[i]:.2f} Hz"
+            # period-doubled branches (born at a flip) thicker, restarts' segments thinner
+            width = {"period_doubled": 2.2, "subharmonic": 1.8}.get(kind, 1.4 if segment[i] == 0 else 1.0)
+            ax.semilogy(f[i:i + 2], a[i:i + 2], color=line, lw=width,
                         ls="-" if stable[i] and stable[i + 1] else "--", label=label)
         ax.scatter(f, a, s=9, zorder=3, c=[colour[r["regime"]] for r in pts])
         # subharmonic orbits (period k T, k > 1, found by a restart): ringed
@@ -259,6 +270,35 @@ def plot_frc(out):
             ax.scatter([float(r["frequency_hz"]) for r in prow], [float(r["tip_amplitude_m"]) for r in prow],
                        s=4, color="0.4", zorder=2,
                        label="not periodic (<= 8 T): tip amplitude per period of a transient")
+    # the transients swept up and down in frequency (--frc-sweep): what the structure reaches,
+    # triangles up / down, the response's period k written next to a subharmonic one, x where
+    # no period <= 8 T was found
+    sweep = os.path.join(out, "frc_sweep.csv")
+    if os.path.exists(sweep):
+        with open(sweep, newline="") as fh:
+            srow = [r for r in csv.DictReader(fh) if r["tip_amplitude_m"] not in ("", "nan")]
+        preloads = sorted({float(r["preload_N"]) for r in rows})
+        for r_dir, marker in (("up", "^"), ("down", "v")):
+            for n0 in sorted({float(r["preload_N"]) for r in srow}):
+                sel = [r for r in srow if r["direction"] == r_dir and float(r["preload_N"]) == n0]
+                if not sel:
+                    continue
+                k = preloads.index(n0) if n0 in preloads else 0
+                periodic = [r for r in sel if int(r["period_T"]) > 0]
+                ax.scatter([float(r["frequency_hz"]) for r in periodic], [float(r["tip_amplitude_m"]) for r in periodic],
+                           s=22, marker=marker, facecolors="none", edgecolors=plt.cm.Set1(k), zorder=5,
+                           label=f"N0 = {n0:g} N, transients swept {r_dir}")
+                none = [r for r in sel if int(r["period_T"]) == 0]
+                if none:
+                    ax.scatter([float(r["frequency_hz"]) for r in none], [float(r["tip_amplitude_m"]) for r in none],
+                               s=22, marker="x", color=plt.cm.Set1(k), zorder=5)
+                for r in sel:
+                    if int(r["period_T"]) > 1 or r.get("asymmetric") == "1":
+                        text = (r["period_T"] + "T" if int(r["period_T"]) > 1 else "") + \
+                               (" asym" if r.get("asymmetric") == "1" else "")
+                        ax.annotate(text, (float(r["frequency_hz"]), float(r["tip_amplitude_m"])), fontsize=6,
+                                    xytext=(3, 3 if r_dir == "up" else -8), textcoords="offset points",
+                                    color=plt.cm.Set1(k))
     for g in regimes:
         ax.scatter([], [], s=12, color=colour[g], label=f"regime: {g}")
     ax.set_xlabel("excitation frequency [Hz]")
