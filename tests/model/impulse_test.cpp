@@ -355,9 +355,10 @@ TEST(LandingRule, BouncingBodyComesToRestAsTheGeometricSeries) {
 }
 
 // The shaken wedge with a slider on the left platform (MixedContacts' scene) at 30 N: the
-// platform throws the wedge off a face and it lands grazing, where the closed face would pull
-// and the open one approach. The complementarity choice of the touching faces and the landing
-// rule carry the run through four periods; the energy audit closes.
+// platform throws the wedge off a face and it lands grazing and sliding. A face that lands
+// while sliding closes slipping along its sliding velocity after the impact (a stuck face would
+// have that velocity projected away and its landing repeat at one instant, up to the Zeno
+// guard); the run goes through four periods and the energy audit closes.
 TEST(LandingRule, ShakenWedgeRunsThroughItsGrazingLandings) {
   const Platforms p{8, 0.01};
   const Wedge w;
