@@ -126,8 +126,8 @@ struct Shaken {
 
 // The shaken wedge (20 N) with a slider on the left platform whose capacity mu_s N = 7 N is a
 // fraction of the shaking force: both kinds stick and slip, the wedge turns and lifts off; the
-// energy audit (impacts and stuck projections booked) closes. (At 30 N with this slider the
-// wedge's grazing landings repeat until the Zeno guard: the limitation of docs/contacts.md.)
+// energy audit (impacts and stuck projections booked) closes. (At 30 N the wedge lands grazing:
+// LandingRule.ShakenWedgeRunsThroughItsGrazingLandings.)
 TEST(MixedContacts, StickSlipRunWithBothKindsClosesTheEnergyBalance) {
   const Shaken s(20.0);
   Mixed sys(s.p.frame, s.p.basis, {s.wedge.body}, mixed_contacts(s.wedge, slider(s.p, 20.0)), s.loads);

@@ -61,6 +61,13 @@ struct ContactSystemOptions {
   bool energy_audit = true;
   /// |v| at or below this counts as v = 0 where a contact's state is decided (CoulombContact).
   Scalar velocity_tolerance = CoulombContact<CoulombLaw<Scalar>>::default_velocity_tolerance();
+  /// A landing whose rebound would rise less than this lands plastically (e = 0; docs/contacts.md,
+  /// "Impacts"): with the pressing acceleration a = -g'' of the open contact at the impact, an
+  /// impact at normal velocity v_n < 0 bounces only when (e v_n)^2 / (2 a) > landing_height [m].
+  /// Negative (the default): 1e-8 of the frame's size (the diagonal of its nodes' bounding box;
+  /// 1e-9 m for a frame of one point). 0: every impact with e |v_n| above the velocity tolerance
+  /// bounces.
+  Scalar landing_height = Scalar(-1);
 };
 
 /// Structure (a frame's retained modes) + planar rigid bodies + contacts + point loads, as a
@@ -243,6 +250,11 @@ class ContactSystem {
   const std::vector<ContactEvent>& events() const noexcept { return events_; }
   /// Forgets the logged switches.
   void clear_events() { events_.clear(); }
+  /// The landing height in use (options().landing_height, or its default for this frame) [m].
+  Scalar landing_height() const noexcept { return landing_height_; }
+  /// Impacts since construction at which no stick / slip case satisfied Newton's and Coulomb's
+  /// laws together and the landing contacts took frictionless impulses (docs/contacts.md, "Impacts").
+  Index frictionless_impacts() const noexcept { return frictionless_impacts_; }
 
  private:
   using Machine = detail::contact_machine_t<Law>;
@@ -270,7 +282,13 @@ class ContactSystem {
   /// under a moving side b.
   auto gap_rate_row(Index i) const { return moving_of_[static_cast<std::size_t>(i)] >= 0 ? Hc_.row(i) : H_.row(i); }
   bool resolve(Mode& mode, Scalar t, State& x);
+  bool resolve_greedy(Mode& mode, Scalar t, State& x, bool may_open);
+  bool separating(const Mode& entry, const Mode& mode) const;
   bool impulse(const Mode& mode, Scalar t, State& x);
+  bool impact(const Mode& mode, Scalar t, State& x);
+  Scalar impulse_friction(Index i) const;
+  void init_impulse(const FrameModel<Scalar>& frame);
+  void landing_restitution(Index i, const State& x);
   void spring_extension(const State& x, Index b, const BodySpring<Scalar>& spring, Scalar& delta, Scalar& rate,
                         Eigen::Matrix<Scalar, 3, 1>& row) const;
   static Vector load_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, const Load& load,
@@ -295,6 +313,18 @@ class ContactSystem {
   std::vector<Index> moving_of_;           // slot in moving_ of contact i, -1 when side b is fixed
   std::vector<ContactEvent> events_;
   std::vector<char> landing_;              // contacts landing at this transition
+
+  // The impact (contact_impulse.hpp): per contact, sized at construction.
+  static constexpr signed char impact_frictionless = 0, impact_stick = 1, impact_slip = 2;
+  static constexpr Index max_friction_landings = 6;  // 3^6 cases at most; more land frictionless
+  static constexpr Index max_touching = 8;           // contacts of the complementarity enumeration
+  std::vector<signed char> impact_choice_;  // a landing contact's case: frictionless, stick or slip
+  std::vector<Index> impact_row_;           // row of its normal impulse (its tangential one follows)
+  std::vector<Index> impact_list_;          // landing contacts with friction / touching contacts
+  Vector impact_e_, impact_mu_, impact_s_;  // restitution in use, mu = -s mu_k of a slip, s
+  Vector vt_, zsave_;                       // sliding velocities before, z' before
+  Scalar landing_height_ = 0;
+  Index frictionless_impacts_ = 0;
 
   // Workspace of solve(): sized at construction, no allocation in a time step.
   mutable Evaluation e_;

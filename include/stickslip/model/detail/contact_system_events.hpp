@@ -63,47 +63,6 @@ CrossingDirection ContactSystem<Scalar_, Contact_>::guard_direction(const Mode& 
 }
 
 template <class Scalar_, class Contact_>
-bool ContactSystem<Scalar_, Contact_>::resolve(Mode& mode, Scalar t, State& x) {
-  // A closed unilateral contact under tension opens (the most tensile first); otherwise the
-  // stuck contact whose required force exceeds its capacity most is released; one at a time,
-  // until every normal force is compressive and every stuck force lies within mu_s N.
-  for (Index iter = 0; iter <= 6 * D_ + 4; ++iter) {
-    solve(mode, t, x);
-    if (!e_.finite) return false;
-    Index worst = -1;
-    Scalar worst_excess = 0;
-    for (Index i = 0; i < D_; ++i)
-      if (unilateral(i) && is_in_contact(mode[i]) && -e_.N[i] > worst_excess) {
-        worst_excess = -e_.N[i];
-        worst = i;
-      }
-    if (worst >= 0) {
-      mode[worst] = ContactState::Separated;
-      continue;
-    }
-    for (Index i = 0; i < D_; ++i) {
-      if (mode[i] != ContactState::Stick || !has_stick_state(i)) continue;
-      const Scalar excess = detail::with_law(machines_[static_cast<std::size_t>(i)], [&](const auto& m) {
-        using M = std::decay_t<decltype(m)>;
-        if constexpr (M::has_stick_state)
-          return std::abs(e_.f[i]) - m.stick_capacity(e_.N[i]);
-        else
-          return Scalar(0);
-      });
-      if (excess > worst_excess) {
-        worst_excess = excess;
-        worst = i;
-      }
-    }
-    if (worst < 0) return true;
-    mode[worst] = detail::with_law(machines_[static_cast<std::size_t>(worst)],
-                                   [&](const auto& m) { return m.decide_at_rest(e_.N[worst], e_.f[worst]); });
-    if (mode[worst] == ContactState::LiftOff && unilateral(worst)) mode[worst] = ContactState::Separated;
-  }
-  return false;
-}
-
-template <class Scalar_, class Contact_>
 bool ContactSystem<Scalar_, Contact_>::make_consistent(Mode& mode, Scalar t, State& x) {
   validate_start(mode, t, x, "ContactSystem::make_consistent");
   const Mode before = mode;
@@ -142,6 +101,7 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
     if (i >= D_) continue;
     if (!is_in_contact(before[i])) {  // the gap closed: an impact
       landing_[static_cast<std::size_t>(i)] = 1;
+      landing_restitution(i, x);
       landing = true;
     } else if (unilateral(i) && k == guards_of(before, i) - 1) {  // the normal force reached zero
       mode[i] = ContactState::Separated;
@@ -157,15 +117,23 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
   }
   bool consistent = true;
   if (landing) {
-    // The impact: landing normal velocities to -e v_n (0 below the velocity tolerance) with the
-    // other constraints held; a contact that does not bounce closes, tried stuck.
-    consistent = impulse(mode, t, x);
+    // The impact (contact_impulse.hpp): landing normal velocities to -e v_n (e = 0 when the
+    // rebound would rise less than the landing height; 0 below the velocity tolerance) with
+    // Coulomb's law on the impulse and the other constraints held. A contact that does not
+    // bounce closes, stuck when its sliding velocity after the impact is at rest, else slipping
+    // along it.
+    consistent = impact(mode, t, x);
+    const auto zd = x.segment(m_, m_);
     for (Index i = 0; i < D_; ++i) {
       const std::size_t iu = static_cast<std::size_t>(i);
       if (!landing_[iu]) continue;
       landing_[iu] = 0;
-      const bool bounces = consistent && gap_rate_row(i).dot(x.segment(m_, m_)) > options_.velocity_tolerance;
-      mode[i] = bounces ? ContactState::Separated : ContactState::Stick;
+      const bool bounces = consistent && gap_rate_row(i).dot(zd) > options_.velocity_tolerance;
+      const Scalar v = G_.row(i).dot(zd);
+      mode[i] = bounces ? ContactState::Separated
+                : (!has_stick_state(i) || std::abs(v) <= options_.velocity_tolerance)
+                    ? ContactState::Stick
+                    : (v > 0 ? ContactState::SlipPositive : ContactState::SlipNegative);
       if (bounces) events_.push_back({t, i, ContactState::Separated, ContactState::Separated});
     }
   }

@@ -92,6 +92,7 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   lu_ = Eigen::FullPivLU<Matrix>(2 * D_, 2 * D_);
   unknown_.reserve(2 * contacts_.size());
   landing_.assign(contacts_.size(), 0);
+  init_impulse(frame);
   events_.reserve(64);
 }
 
@@ -271,3 +272,4 @@ auto ContactSystem<Scalar_, Contact_>::linear_rates() const -> std::vector<std::
 #include <stickslip/model/detail/contact_system_events.hpp>
 #include <stickslip/model/detail/contact_system_moving.hpp>
 #include <stickslip/model/detail/contact_system_solve.hpp>
+#include <stickslip/model/detail/contact_impulse.hpp>

@@ -1,8 +1,8 @@
 #pragma once
 /// \file contact_system_solve.hpp
 /// \brief ContactSystem's coupled solve (contact_system.hpp): the known generalised forces, the
-/// contacts' rows at the current rotations, the capacitance system of the constrained rows, and
-/// the impulses that set constrained velocities (stuck projections, landings).
+/// contacts' rows at the current rotations and the capacitance system of the constrained rows
+/// (the impulses are in contact_impulse.hpp).
 
 #include <stickslip/model/contact_system.hpp>
 
@@ -144,58 +144,6 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
   }
   if (!(isfinite(e.qdd.sum()) && isfinite(e.f.sum()) && isfinite(e.N.sum()) && isfinite(e.X.sum())))
     e.finite = false;
-}
-
-template <class Scalar_, class Contact_>
-bool ContactSystem<Scalar_, Contact_>::impulse(const Mode& mode, Scalar t, State& x) {
-  // The constrained velocities (stuck sliding velocities, closed normal velocities: target 0;
-  // landing normal velocities: target -e v_n, or 0 when that is below the velocity tolerance)
-  // are set by the impulse along the rows that changes z' least in kinetic energy:
-  //   z' <- z' + M^-1 cols^T Lambda,   (rows M^-1 cols^T) Lambda = target - rows z',
-  // cols = rows (a normal impulse along the normal row, a stuck one along the sliding row)
-  // except under a moving side b, whose gap-rate row adds the slope's share of the sliding row.
-  // The kinetic energy it removes is booked as friction dissipation.
-  solve(mode, t, x);
-  if (!e_.finite) return false;
-  b_.setZero();
-  Index U = 0;
-  for (Index i = 0; i < D_; ++i) {
-    const std::size_t iu = static_cast<std::size_t>(i);
-    if (landing_[iu]) {
-      rows_.row(U) = gap_rate_row(i);
-      cols_.row(U) = H_.row(i);
-      const Scalar bounce = -restitution_[i] * rows_.row(U).dot(x.segment(m_, m_));
-      b_[U++] = bounce > options_.velocity_tolerance ? bounce : Scalar(0);
-      continue;
-    }
-    if (unilateral(i) && is_in_contact(mode[i])) {
-      rows_.row(U) = gap_rate_row(i);
-      cols_.row(U) = H_.row(i);
-      b_[U++] = 0;
-    }
-    if (mode[i] == ContactState::Stick && has_stick_state(i)) {
-      rows_.row(U) = G_.row(i);
-      cols_.row(U) = G_.row(i);
-      b_[U++] = 0;
-    }
-  }
-  if (U == 0) return true;
-  auto zd = x.segment(m_, m_);
-  C_.setZero();
-  Scalar scale = 0;
-  for (Index a = 0; a < U; ++a) {  // C = rows M^-1 cols^T: symmetric unless a side b moves
-    b_[a] -= rows_.row(a).dot(zd);
-    for (Index c = 0; c < U; ++c) C_(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
-    scale = std::max(scale, std::abs(C_(a, a)));
-  }
-  for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
-  lu_.compute(C_);
-  if (lu_.rank() < 2 * D_) return false;
-  lambda_ = lu_.solve(b_);
-  const Scalar before = Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
-  for (Index a = 0; a < U; ++a) zd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
-  if (options_.energy_audit) x[audit_offset() + 2] += before - Scalar(0.5) * zd.dot(zd.cwiseQuotient(minv_));
-  return true;
 }
 
 }  // namespace stickslip
