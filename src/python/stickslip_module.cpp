@@ -1245,8 +1245,8 @@ void bind_bodies(py::module_& m) {
       "The PointDamper `damper` on `frame` as body number `body` of a scene (PointDamperBody): the body on its "
       "spring pressed by its preload, and a contact whose side b moves along the member with the sliding (X' = V) "
       "unless damper.contact_point is Fixed; the normal is unilateral (the contact opens at N = 0 and lands with "
-      "damper.restitution) (docs/contacts.md). ValueError naming the parameter: a member not in the frame, "
-      "normal_load Constant, start_end or finish_end not Default, the damper's own checks.");
+      "damper.restitution, or the run stops there under Separation.Stop) (docs/contacts.md). ValueError naming "
+      "the parameter: a member not in the frame, a Wall end, the damper's own checks.");
 
   using Kind = AnyContact<double>::Kind;
   auto mixed = bind_contact_system<PyMixedContactSystem>(
@@ -2231,6 +2231,7 @@ void bind_steady_state(py::module_& m) {
 
 void bind_auto(py::module_& m);  // auto_bindings.cpp
 void bind_impulse(py::module_& m);  // impulse_bindings.cpp: impact options of the contact systems
+void bind_assembler(py::module_& m);  // assembler_bindings.cpp: body contacts as the paper's damper
 
 PYBIND11_MODULE(stickslip, m) {
   m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
@@ -2246,4 +2247,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_auto(m);
   bind_firstuser(m);
   bind_impulse(m);
+  bind_assembler(m);
 }

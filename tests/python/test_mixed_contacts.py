@@ -104,11 +104,11 @@ def test_point_damper_body_follows_the_friction_damped_system():
     assert runs[1].energy.relative_residual() <= 1e-10
 
 
-def test_point_damper_body_rejects_a_constant_normal_load():
+def test_point_damper_body_rejects_a_wall():
     scene = blade.make_blade_scene(blade.BladeParameters(preload=2.7))
     d = scene.system.dampers()[0]
-    d.normal_load = ss.NormalLoad.Constant
-    with pytest.raises(ValueError, match="point_damper_body.*normal_load"):
+    d.finish_end = ss.MemberEnd.Wall
+    with pytest.raises(ValueError, match="point_damper_body.*finish_end = Wall"):
         ss.point_damper_body(scene.frame, 0, d)
     d = scene.system.dampers()[0]
     d.member = 7

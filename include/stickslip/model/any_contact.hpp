@@ -87,6 +87,10 @@ struct AnyContact {
   ContactPoint side_b_motion() const noexcept { return body() ? body()->contact_point : ContactPoint::Fixed; }
   /// A BodyContact's side b (none for a PointContact).
   std::optional<StructurePoint<Scalar>> structure_side() const { return body() ? body()->b : std::nullopt; }
+  /// A BodyContact's choices (the defaults for a PointContact).
+  detail::BodyContactChoices contact_choices() const noexcept {
+    return body() ? body()->contact_choices() : detail::BodyContactChoices{};
+  }
 
  private:
   const BodyContact<Scalar>* body() const noexcept { return std::get_if<BodyContact<Scalar>>(&kind); }

@@ -20,19 +20,39 @@
 /// (X0 = b->coordinate), which the system integrates with X' = (t . u) v (u the member's axis, to
 /// which t must be parallel). The rows then hold the member's shapes at X, and the gap's rate
 /// adds the member's slope under the moving point (docs/contacts.md, "A moving contact point").
+///
+/// Options of the paper's damper (docs/contacts.md, "The paper's damper as a body"): a held normal
+/// force instead of the unilateral normal (normal_behaviour = Held: N = held_normal_force, the
+/// contact never opens and the body is not held along n, so with an opposite load of the same
+/// size on the body N does no work on it), a lift-off that stops the run (at_lift_off = Stop),
+/// and what a moving side b does at its member's ends (start_end, finish_end).
 
 #include <stickslip/model/contact_point.hpp>
+#include <stickslip/model/detail/body_contact_choices.hpp>
+#include <stickslip/model/detail/enum_checks.hpp>
+#include <stickslip/model/member_end.hpp>
 #include <stickslip/model/point_damper.hpp>
 #include <stickslip/model/rigid_body.hpp>
+#include <stickslip/model/separation.hpp>
 #include <stickslip/model/structure_point.hpp>
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
 
 namespace stickslip {
+
+/// The normal of a BodyContact.
+enum class ContactNormal : std::uint8_t {
+  /// N is an unknown of the coupled solve holding the gap closed; N = 0 opens the contact.
+  Unilateral,
+  /// N = BodyContact::held_normal_force, given: along n the sides move freely (no gap held), the
+  /// contact never opens (the damper's constant normal load, NormalLoad::Constant).
+  Held
+};
 
 /// A friction contact of a rigid-body point on a structure point or on ground, with a
 /// unilateral normal. Satisfies the contact concept with a body side (contact_concept.hpp).
@@ -53,6 +73,18 @@ struct BodyContact {
   /// Side b a fixed material point (Fixed) or the member point under the body point, moving
   /// along the member with the sliding (Moving; needs b, with 0 < b->coordinate < length).
   ContactPoint contact_point = ContactPoint::Fixed;
+  /// Unilateral (N the solve's unknown) or Held (N = held_normal_force).
+  ContactNormal normal_behaviour = ContactNormal::Unilateral;
+  /// N [N] of a Held normal, > 0.
+  Scalar held_normal_force = Scalar(0);
+  /// A unilateral contact whose N reaches zero: opens (Separate) or stops the run (Stop; a state
+  /// at t0 that would open it makes make_consistent fail).
+  Separation at_lift_off = Separation::Separate;
+  /// A moving side b at X = 0 of its member: Default or Stop stops the run, Extend continues
+  /// with the end element's shapes continued (EndPolicy::Extrapolate). Wall is not available.
+  MemberEnd start_end = MemberEnd::Default;
+  /// A moving side b at X = L, as start_end.
+  MemberEnd finish_end = MemberEnd::Default;
 
   /// `point` on ground whose surface has normal `normal`.
   static BodyContact on_ground(BodyPoint<Scalar> point, PlaneDirection<Scalar> normal, Law law,
@@ -74,8 +106,10 @@ struct BodyContact {
 
   /// The friction law.
   const Law& law() const noexcept { return friction; }
-  /// Not read: the normal force of a unilateral contact is an unknown of the coupled solve.
-  Scalar normal_force(Scalar) const noexcept { return Scalar(0); }
+  /// N of a Held normal; not read under a unilateral one (N is an unknown of the coupled solve).
+  Scalar normal_force(Scalar) const noexcept {
+    return normal_behaviour == ContactNormal::Held ? held_normal_force : Scalar(0);
+  }
   /// The contact state at the start of a run.
   ContactState start_state() const noexcept { return initial_state; }
 
@@ -93,6 +127,11 @@ struct BodyContact {
   ContactPoint side_b_motion() const noexcept { return contact_point; }
   /// Side b (none: ground).
   const std::optional<StructurePoint<Scalar>>& structure_side() const noexcept { return b; }
+  /// The options above that change the system's events (detail::BodyContactChoices).
+  detail::BodyContactChoices contact_choices() const noexcept {
+    return {normal_behaviour == ContactNormal::Held, at_lift_off == Separation::Stop,
+            start_end == MemberEnd::Extend, finish_end == MemberEnd::Extend};
+  }
 
   /// The structure's part of the sliding velocity's row: -t . u_b' = row . q' (zero on ground).
   Vector tangential_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis,
@@ -134,6 +173,19 @@ struct BodyContact {
       detail::throw_invalid(where, "contact_point = Moving needs a side b on the structure (b)", 0);
     if (initial_gap > Scalar(0) && initial_state != ContactState::Separated)
       detail::throw_invalid(where, "initial_gap > 0 needs initial_state = Separated", initial_gap);
+    detail::require_enumerator(where, "normal_behaviour", "ContactNormal", normal_behaviour, ContactNormal::Held);
+    detail::require_enumerator(where, "at_lift_off", "Separation", at_lift_off, Separation::Separate);
+    detail::require_enumerator(where, "start_end", "MemberEnd", start_end, MemberEnd::Wall);
+    detail::require_enumerator(where, "finish_end", "MemberEnd", finish_end, MemberEnd::Wall);
+    if (normal_behaviour == ContactNormal::Held) {
+      detail::require_positive(where, "held_normal_force", held_normal_force);
+      if (initial_state == ContactState::Separated)
+        detail::throw_invalid(where, "initial_state = Separated needs a unilateral normal (normal_behaviour)",
+                              static_cast<int>(initial_state));
+    }
+    if (start_end == MemberEnd::Wall || finish_end == MemberEnd::Wall)
+      detail::throw_invalid(where, "start_end and finish_end cannot be Wall (not available on a body contact)",
+                            static_cast<int>(MemberEnd::Wall));
   }
 
  private:

@@ -38,6 +38,10 @@
 ///
 ///     ContactPoint side_b_motion() const;                   // Fixed or Moving
 ///     std::optional<StructurePoint<Scalar>> structure_side() const;  // side b, its X0
+/// and may supply its choices (a held normal N = normal_force(t), a lift-off that stops the run,
+/// member ends a moving side b continues past; defaults without it):
+///
+///     detail::BodyContactChoices contact_choices() const;
 
 #include <stickslip/beam/frame_model.hpp>
 #include <stickslip/contact/contact_state.hpp>

@@ -28,6 +28,7 @@
 #include <stickslip/modal/modal_basis.hpp>
 #include <stickslip/model/contact_concept.hpp>
 #include <stickslip/model/damper_states.hpp>
+#include <stickslip/model/detail/body_contact_choices.hpp>
 #include <stickslip/model/detail/contact_linear_workspace.hpp>
 #include <stickslip/model/detail/contact_machine.hpp>
 #include <stickslip/model/detail/moving_contact.hpp>
@@ -305,6 +306,9 @@ class ContactSystem {
   Matrix Wn_;     // D x n: structure part of the normal-velocity rows (zero under a held normal)
   Matrix Phi_;    // n x L: load rows
   std::vector<char> unilateral_;           // contact i has a unilateral normal
+  std::vector<char> stop_at_lift_off_;     // contact i stops the run where its N reaches zero
+  std::vector<char> extends_;              // 2 per moving side b: continues past X = 0, X = L
+  Index lifted_ = -1;                      // the contact whose lift-off stopped resolve()
   std::vector<Index> body_of_;             // body of side a, -1 when side a is on the structure
   std::vector<Vector2> point_, tdir_, ndir_;
   Vector restitution_, gap0_;

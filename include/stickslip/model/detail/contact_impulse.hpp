@@ -228,6 +228,10 @@ bool ContactSystem<Scalar_, Contact_>::resolve(Mode& mode, Scalar t, State& x) {
       Index bits = 0;
       for (Index k = 0; k < K; ++k) bits += (subset >> k) & 1u;
       if (bits != count) continue;
+      bool stops = false;  // a contact that stops the run at lift-off is never opened
+      for (Index k = 0; k < K; ++k)
+        stops = stops || (((subset >> k) & 1u) && stop_at_lift_off_[static_cast<std::size_t>(impact_list_[static_cast<std::size_t>(k)])]);
+      if (stops) continue;
       Mode trial = entry;
       for (Index k = 0; k < K; ++k)
         if ((subset >> k) & 1u) trial[impact_list_[static_cast<std::size_t>(k)]] = ContactState::Separated;
@@ -259,6 +263,10 @@ bool ContactSystem<Scalar_, Contact_>::resolve_greedy(Mode& mode, Scalar t, Stat
         worst = i;
       }
     if (worst >= 0) {
+      if (stop_at_lift_off_[static_cast<std::size_t>(worst)]) {  // the run stops there (lifted_)
+        lifted_ = worst;
+        return false;
+      }
       if (!may_open) return false;
       mode[worst] = ContactState::Separated;
       continue;

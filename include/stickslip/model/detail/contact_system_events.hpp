@@ -41,10 +41,11 @@ void ContactSystem<Scalar_, Contact_>::guards(const Mode& mode, Scalar t, const 
     });
     k += guards_of(mode, i);
   }
-  for (Index p = 0; p < num_moving(); ++p) {
+  for (Index p = 0; p < num_moving(); ++p) {  // an end the side b continues past never fires
+    const std::size_t pu = static_cast<std::size_t>(p);
     const Scalar X = x[contact_offset() + p];
-    g[k++] = X;
-    g[k++] = moving_[static_cast<std::size_t>(p)].shapes.length() - X;
+    g[k++] = extends_[2 * pu] ? Scalar(1) : X;
+    g[k++] = extends_[2 * pu + 1] ? Scalar(1) : moving_[pu].shapes.length() - X;
   }
 }
 
@@ -66,6 +67,7 @@ template <class Scalar_, class Contact_>
 bool ContactSystem<Scalar_, Contact_>::make_consistent(Mode& mode, Scalar t, State& x) {
   validate_start(mode, t, x, "ContactSystem::make_consistent");
   const Mode before = mode;
+  lifted_ = -1;
   solve(mode, t, x);
   for (Index i = 0; i < D_; ++i) {  // component 4's rule 2: sliding where |v| > tolerance
     if (!has_stick_state(i) || !is_in_contact(mode[i])) continue;  // an open contact stays open
@@ -84,6 +86,7 @@ template <class Scalar_, class Contact_>
 TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const TriggeredGuards& which, Scalar t,
                                                               State& x) {
   const Mode before = mode;
+  lifted_ = -1;
   const Index end_guards = contact_guards(before);
   for (Index idx : which) {  // a moving side b at a member end: its shapes end there
     if (idx < end_guards) continue;
@@ -104,6 +107,9 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
       landing_restitution(i, x);
       landing = true;
     } else if (unilateral(i) && k == guards_of(before, i) - 1) {  // the normal force reached zero
+      if (stop_at_lift_off_[static_cast<std::size_t>(i)])
+        return TransitionAction::halt("contact " + std::to_string(i) + " lifted off (N = 0) at t = " +
+                                      detail::format_value(t));
       mode[i] = ContactState::Separated;
     } else if (before[i] == ContactState::Stick) {
       // A stick guard: component 4's rule 4 (slip against the required force).
@@ -141,6 +147,9 @@ TransitionAction ContactSystem<Scalar_, Contact_>::transition(Mode& mode, const 
   if (consistent) consistent = impulse(mode, t, x);
   if (!consistent) {
     mode = before;
+    if (lifted_ >= 0)
+      return TransitionAction::halt("contact " + std::to_string(lifted_) + " lifted off (N < 0) at t = " +
+                                    detail::format_value(t));
     return TransitionAction::halt("no consistent set of contact states at t = " + detail::format_value(t) +
                                   " (dependent constrained contacts, or no set within mu_s N and N >= 0)");
   }

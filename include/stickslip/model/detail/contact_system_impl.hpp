@@ -35,6 +35,7 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   W_.resize(D_, n_);
   Wn_.setZero(D_, n_);
   unilateral_.assign(contacts_.size(), 0);
+  stop_at_lift_off_.assign(contacts_.size(), 0);
   body_of_.assign(contacts_.size(), -1);
   point_.assign(contacts_.size(), Vector2::Zero());
   tdir_.assign(contacts_.size(), Vector2::Zero());
@@ -53,7 +54,14 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
     if constexpr (body_contacts) {
       if (detail::body_side_of(c)) {
         assemble_body_side(i, c, frame, basis, name);
-        if (detail::moving_side_of(c)) assemble_moving_side(i, c, frame, basis, name);
+        const detail::BodyContactChoices choices = detail::contact_choices_of(c);
+        unilateral_[iu] = !choices.held_normal;
+        stop_at_lift_off_[iu] = choices.stop_at_lift_off;
+        if (detail::moving_side_of(c)) {
+          assemble_moving_side(i, c, frame, basis, name);
+          extends_.push_back(choices.extend_start);
+          extends_.push_back(choices.extend_finish);
+        }
         moves = true;  // the body point's own row [t, t . (k x R r)] is never zero
       }
     }
@@ -149,7 +157,9 @@ void ContactSystem<Scalar_, Contact_>::validate_state(const Mode& mode, const St
   for (Index p = 0; p < num_moving(); ++p) {
     const auto& side = moving_[static_cast<std::size_t>(p)];
     const Scalar X = x[contact_offset() + p];
-    if (!side.shapes.contains(X))
+    const bool beyond = (X < Scalar(0) && !extends_[static_cast<std::size_t>(2 * p)]) ||
+                        (X > side.shapes.length() && !extends_[static_cast<std::size_t>(2 * p + 1)]);
+    if (beyond || !std::isfinite(X))
       detail::throw_invalid(where, "x[" + std::to_string(contact_offset() + p) + "], the contact coordinate X of contact " +
                                        std::to_string(side.contact) + ", must lie on member " +
                                        std::to_string(side.shapes.member()) + " ([0, " +

@@ -91,6 +91,7 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
       continue;
     }
     e.N[i] = contacts_[iu].normal_force(t);
+    if (body_of_[iu] >= 0) r_ += e.N[i] * H_.row(i).transpose();  // a held normal acts along n
     if (stuck) {
       unknown_.push_back(i);
       continue;
