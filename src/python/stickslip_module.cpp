@@ -2230,6 +2230,7 @@ void bind_steady_state(py::module_& m) {
 }  // namespace
 
 void bind_auto(py::module_& m);  // auto_bindings.cpp
+void bind_disk(py::module_& m);  // disk_bindings.cpp: bladed disks, travelling waves, mistuning
 
 PYBIND11_MODULE(stickslip, m) {
   m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
@@ -2244,4 +2245,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_steady_state(m);
   bind_auto(m);
   bind_firstuser(m);
+  bind_disk(m);
 }
