@@ -82,21 +82,44 @@ inline BladeScene::System make_blade_system(const BladeScene& s, const BladePara
   return BladeScene::System(s.frame, s.basis, std::move(dampers), std::move(loads), p.model);
 }
 
+/// The ids of one blade + platform frame added by add_blade_frame.
+struct BladeFrame {
+  Index root = 0;             ///< clamped root node, at origin
+  Index left = 0, right = 0;  ///< platform wing ends, origin + (-/+ L2/2, L1)
+  Index tip_node = 0;         ///< blade tip = platform middle
+  Index platform_member = 0;  ///< left -> right
+  Index blade_member = 0;     ///< root -> tip
+};
+
+/// Adds the paper's blade + platform (the T-shaped frame of docs/blade_damper.md) to `f` with
+/// its root at `origin`, the Young's modulus scaled by `stiffness_factor` (blade-to-blade
+/// mistuning of a disk; 1 for the single blade). Nodes and members are added in the same order
+/// at every call: root, left, right, platform, blade.
+inline BladeFrame add_blade_frame(stickslip::FrameModel<double>& f, const BladeParameters& p,
+                                  const Eigen::Vector2d& origin = Eigen::Vector2d::Zero(),
+                                  double stiffness_factor = 1.0) {
+  const stickslip::SectionProperties<double> section{p.E * stiffness_factor, p.rho, p.A, p.I};
+  BladeFrame b;
+  b.root = f.add_node(origin.x(), origin.y());
+  b.left = f.add_node(origin.x() - p.L2 / 2, origin.y() + p.L1);
+  b.right = f.add_node(origin.x() + p.L2 / 2, origin.y() + p.L1);
+  b.platform_member = f.add_member(b.left, b.right, section, p.platform_elements);
+  b.tip_node = f.member(b.platform_member).nodes[static_cast<std::size_t>(p.platform_elements / 2)];
+  b.blade_member = f.add_member(b.root, b.tip_node, section, p.blade_elements);
+  f.clamp(b.root);
+  return b;
+}
+
 /// Builds the default blade-damper scene for the given parameters.
 inline BladeScene make_blade_scene(const BladeParameters& p) {
   using namespace stickslip;
   BladeScene s;
   s.parameters = p;
-  const SectionProperties<double> section{p.E, p.rho, p.A, p.I};
   auto& f = s.frame;
-  const Index root = f.add_node(0.0, 0.0);
-  const Index left = f.add_node(-p.L2 / 2, p.L1);
-  const Index right = f.add_node(p.L2 / 2, p.L1);
-  s.platform_member = f.add_member(left, right, section, p.platform_elements);
-  const auto& platform = f.member(s.platform_member);
-  s.tip_node = platform.nodes[static_cast<std::size_t>(p.platform_elements / 2)];
-  s.blade_member = f.add_member(root, s.tip_node, section, p.blade_elements);
-  f.clamp(root);
+  const BladeFrame b = add_blade_frame(f, p);
+  s.platform_member = b.platform_member;
+  s.tip_node = b.tip_node;
+  s.blade_member = b.blade_member;
 
   ModalOptions<double> mo;
   mo.num_modes = p.modes;

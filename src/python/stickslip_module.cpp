@@ -2232,6 +2232,7 @@ void bind_steady_state(py::module_& m) {
 void bind_auto(py::module_& m);  // auto_bindings.cpp
 void bind_impulse(py::module_& m);  // impulse_bindings.cpp: impact options of the contact systems
 void bind_assembler(py::module_& m);  // assembler_bindings.cpp: body contacts as the paper's damper
+void bind_disk(py::module_& m);  // disk_bindings.cpp: bladed disks, travelling waves, mistuning
 
 PYBIND11_MODULE(stickslip, m) {
   m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
@@ -2248,4 +2249,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_firstuser(m);
   bind_impulse(m);
   bind_assembler(m);
+  bind_disk(m);
 }
