@@ -1,4 +1,4 @@
-"""Rigid bodies, body contacts and the wedge damper in the Python module (docs/python.md, "Rigid
+"""Rigid bodies, body contacts and the wedge damper in the Python module (docs/howto/python_contacts.md, "Rigid
 bodies and the wedge damper").
 
 References that do not come from the code under test: the wedge's statics by hand (the balance

@@ -1,4 +1,4 @@
-"""Tests of ContactSystem in the Python module (docs/python.md, "Contacts at structure points").
+"""Tests of ContactSystem in the Python module (docs/howto/python_contacts.md, "Contacts at structure points").
 
 References that do not come from the code under test: Den Hartog's closed-form continuous-sliding
 orbit of a forced oscillator with Coulomb friction (ported below), the energy balance, and the

@@ -1,5 +1,5 @@
 """Impacts with Coulomb friction on the impulse and the landing rule of the contact systems in the
-Python module (docs/contacts.md, "Impacts").
+Python module (docs/contacts_impacts.md).
 
 References that do not come from the code under test: the post-impact velocities of a point mass
 hitting ground obliquely by hand (Newton's restitution, Coulomb's law for impulses), and the
