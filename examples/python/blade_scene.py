@@ -73,7 +73,7 @@ def make_blade_scene(p: BladeParameters) -> BladeScene:
     return BladeScene(f, basis, system, blade, platform, ss.Probe(blade, p.L1, ss.LoadDirection.GlobalX))
 
 
-def run_options(integrator="dopri5", rtol=1e-7, atol=1e-10, sample_interval=1e-4):
+def run_options(integrator="auto", rtol=1e-7, atol=1e-10, sample_interval=1e-4):
     """The example's defaults (blade_damper: --rtol 1e-7 --atol 1e-10, samples every 0.1 ms)."""
     return ss.RunOptions(integrator, rtol=rtol, atol=atol, event_time_tolerance=1e-12,
                          output_interval=sample_interval)
