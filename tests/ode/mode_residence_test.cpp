@@ -56,7 +56,7 @@ struct Oscillator {
 TEST(ModeResidence, OnTheForcedResponseTheBoundIsTheWallGapLessTheAmplitude) {
   Oscillator o;
   o.c = 0.5;
-  const auto r = mode_residence(o.linear_part(), 0.0, o.forced(0.0), 10.0);
+  const auto r = mode_residence<double>(o.linear_part(), 0.0, o.forced(0.0), 10.0);
   ASSERT_TRUE(r.bounded) << r.why_not;
   EXPECT_NEAR(r.lower[0], o.G - o.X(), 1e-12 * o.X());
   EXPECT_TRUE(r.stays);
@@ -68,7 +68,7 @@ TEST(ModeResidence, OnTheForcedResponseTheBoundIsTheWallGapLessTheAmplitude) {
 TEST(ModeResidence, FromRestTheBoundHoldsAndIsNearlyReached) {
   Oscillator o;
   const Vector rest = Vector::Zero(2);
-  const auto r = mode_residence(o.linear_part(), 0.0, rest, 200.0);
+  const auto r = mode_residence<double>(o.linear_part(), 0.0, rest, 200.0);
   ASSERT_TRUE(r.bounded) << r.why_not;
   double lowest = 1e300;
   for (int i = 0; i <= 100000; ++i) lowest = std::min(lowest, o.G - o.q_undamped(rest, 200.0 * i / 100000));
@@ -88,7 +88,7 @@ TEST(ModeResidence, StaysOnlyWhereTheExactResponseNeverReachesTheWall) {
   for (int i = 0; i <= 50000; ++i) peak = std::max(peak, o.q_undamped(x0, 100.0 * i / 50000));
   for (double G = 0.0; G <= 0.05; G += 0.0005) {
     o.G = G;
-    const auto r = mode_residence(o.linear_part(), 0.0, x0, 100.0);
+    const auto r = mode_residence<double>(o.linear_part(), 0.0, x0, 100.0);
     ASSERT_TRUE(r.bounded);
     if (r.stays) {
       EXPECT_GT(G, peak) << "the bound let a wall at " << G << " stand inside the motion";
@@ -102,7 +102,7 @@ TEST(ModeResidence, StaysOnlyWhereTheExactResponseNeverReachesTheWall) {
 TEST(ModeResidence, RefusesResonanceDefectiveAndInexactModes) {
   Oscillator o;
   o.w = std::sqrt(o.k / o.m);
-  auto r = mode_residence(o.linear_part(), 0.0, Vector::Zero(2), 1.0);
+  auto r = mode_residence<double>(o.linear_part(), 0.0, Vector::Zero(2), 1.0);
   EXPECT_FALSE(r.bounded);
   EXPECT_NE(r.why_not.find("resonance"), std::string::npos) << r.why_not;
 
@@ -111,14 +111,14 @@ TEST(ModeResidence, RefusesResonanceDefectiveAndInexactModes) {
   free_mass.F = 0;
   Vector moving(2);
   moving << 0, 1;
-  r = mode_residence(free_mass.linear_part(), 0.0, moving, 1.0);
+  r = mode_residence<double>(free_mass.linear_part(), 0.0, moving, 1.0);
   EXPECT_FALSE(r.bounded);  // v stays 1: x drifts (its constant load v has no steady response)
   EXPECT_NE(r.why_not.find("no steady response"), std::string::npos) << r.why_not;
   // The same free mass at rest stays where it is (x' = v, v' = 0, v = 0: both constant, set
   // aside): the guard's bound is the gap itself.
   Vector resting(2);
   resting << 0.25, 0;
-  r = mode_residence(free_mass.linear_part(), 0.0, resting, 1.0);
+  r = mode_residence<double>(free_mass.linear_part(), 0.0, resting, 1.0);
   ASSERT_TRUE(r.bounded) << r.why_not;
   EXPECT_DOUBLE_EQ(r.lower[0], free_mass.G - 0.25);
   // A defective A proper: the free mass pushed harmonically (v is loaded, so nothing is set aside,
@@ -126,13 +126,13 @@ TEST(ModeResidence, RefusesResonanceDefectiveAndInexactModes) {
   // modal bound cannot show it: refused, conservatively.
   Oscillator pushed = free_mass;
   pushed.F = 1.0;
-  r = mode_residence(pushed.linear_part(), 0.0, Vector::Zero(2), 1.0);
+  r = mode_residence<double>(pushed.linear_part(), 0.0, Vector::Zero(2), 1.0);
   EXPECT_FALSE(r.bounded);
   EXPECT_FALSE(r.why_not.empty());
 
   auto lp = Oscillator{}.linear_part();
   lp.exact = false;
-  r = mode_residence(lp, 0.0, Vector::Zero(2), 1.0);
+  r = mode_residence<double>(lp, 0.0, Vector::Zero(2), 1.0);
   EXPECT_FALSE(r.bounded);
   EXPECT_FALSE(r.stays);
 }
@@ -154,7 +154,7 @@ TEST(ModeResidence, DampedBoundHoldsAgainstTheClosedForm) {
     const double q = o.forced(t)[0] + std::exp(-zeta * wn * t) * (A * std::cos(wd * t) + B * std::sin(wd * t));
     lowest = std::min(lowest, o.G - q);
   }
-  const auto r = mode_residence(o.linear_part(), 0.0, x0, 20.0);
+  const auto r = mode_residence<double>(o.linear_part(), 0.0, x0, 20.0);
   ASSERT_TRUE(r.bounded) << r.why_not;
   EXPECT_LE(r.lower[0], lowest + 1e-12);
 }

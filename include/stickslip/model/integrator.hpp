@@ -160,8 +160,10 @@ IntegratorChoice choose_integrator(System& system, const typename System::Mode& 
     if constexpr (detail::has_every_mode_exact<System>::value) {
       // Rule 1b: the run provably stays in an exact start mode (a stuck scene).
       LinearPart<Scalar> lp;
+      lp.want_inexact_guards = false;  // only an exact mode's guards are used
       if (system.linear_part(mode, t0, x0, lp) && lp.exact) {
-        const ModeResidence<Scalar> stay = mode_residence(lp, t0, x0, t_end);
+        const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> start = x0.head(lp.size());
+        const ModeResidence<Scalar> stay = mode_residence<Scalar>(lp, t0, start, t_end);
         if (stay.stays) {
           c.integrator = Integrator::Exponential;
           c.reason = why + ", but the start mode is exactly linear and its guards stay positive until "

@@ -62,9 +62,9 @@ struct ModeResidence {
 /// the mode (left null vectors of A that no load drives) are set aside first. Costs a few SVDs and
 /// an eigen-decomposition of A (O(n^3)).
 /// Allocates; call it once per run, not per step.
-template <class Scalar, class Derived>
-ModeResidence<Scalar> mode_residence(const LinearPart<Scalar>& lp, Scalar t0, const Eigen::MatrixBase<Derived>& x0,
-                                     Scalar t_end) {
+template <class Scalar>
+ModeResidence<Scalar> mode_residence(const LinearPart<Scalar>& lp, Scalar t0,
+                                     const Eigen::Matrix<Scalar, Eigen::Dynamic, 1>& x0, Scalar t_end) {
   using Matrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic>;
   using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
   using Complex = std::complex<Scalar>;
@@ -221,3 +221,13 @@ ModeResidence<Scalar> mode_residence(const LinearPart<Scalar>& lp, Scalar t0, co
 }
 
 }  // namespace stickslip
+
+#ifdef STICKSLIP_COMPILED
+// The compiled mode: mode_residence<double> (SVDs, an eigen-decomposition, complex LU) is
+// instantiated once, in stickslip::compiled (src/mode_residence.cpp).
+namespace stickslip {
+extern template ModeResidence<double> mode_residence<double>(const LinearPart<double>&, double,
+                                                             const Eigen::Matrix<double, Eigen::Dynamic, 1>&,
+                                                             double);
+}  // namespace stickslip
+#endif

@@ -227,8 +227,10 @@ void FrictionDampedSystem<Scalar_, Law_, Modes>::frozen_guard_rows(const Mode& m
     const std::size_t iu = static_cast<std::size_t>(i);
     for (Index e = 0; e < 2; ++e, ++k) {
       lp.Gx.row(k).setZero();
-      lp.gc.row(k).setZero();
-      lp.gs.row(k).setZero();
+      if (K > 0) {  // G x 0 without harmonic loads: no row to clear (and no data to offset)
+        lp.gc.row(k).setZero();
+        lp.gs.row(k).setZero();
+      }
       if (end_kind_[iu][static_cast<std::size_t>(e)] != MemberEnd::Extend)
         lp.Gx(k, contact_offset() + i) = e == 0 ? Scalar(1) : Scalar(-1);
     }
