@@ -2,10 +2,14 @@
 // 6 modes, a Coulomb slider at mid-span: examples/grounded_slider) stuck and slipping, and of a
 // wedge damper between two platform cantilevers (a rigid body, two unilateral faces) stuck and
 // slipping; the cost per point of the slider's frequency-response curve (shooting and
-// continuation from 0.8 omega_1) with Dormand-Prince and with the exact method.
+// continuation from 0.8 omega_1) with Dormand-Prince and with the exact method; the paper's blade
+// scene (examples/blade_damper, two point dampers) through FrictionDampedSystem and through
+// ContactSystem (each damper a rigid body on a moving contact, point_damper_body), paired.
 //
 //   contact_system_benchmark [--benchmark_filter=...]
 // BM_FrcPerPoint reports s_per_point (CPU of the thread) and the points traced.
+
+#include "blade_damper/blade_scene.hpp"
 
 #include <benchmark/benchmark.h>
 #include <stickslip/model/contact_system.hpp>
@@ -13,6 +17,8 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <ctime>
 #include <random>
@@ -174,6 +180,94 @@ void BM_FrcPerPoint(benchmark::State& st) {
   }
 }
 BENCHMARK(BM_FrcPerPoint)->Args({0, 10})->Args({1, 10})->Iterations(1)->Unit(benchmark::kSecond);
+
+/// The blade scene's composed right-hand side through both assemblies, paired: each iteration
+/// times a block of kBlock FrictionDampedSystem calls, then a block of kBlock ContactSystem calls
+/// (steady clock), and the counters report the medians of the two per-call times and of the
+/// per-pair ratio (contact / fds), so a slow phase of a shared machine hits both halves of a pair.
+/// Both start from the consistent state at rest plus the same small random modal state; calls
+/// alternate between two states (as integrator stages do), so no evaluation cache hits. Arg: 0
+/// both dampers stuck, 1 both slipping (FrictionDampedSystem's sign; the body's tangent is
+/// mirrored, so its mode is SlipNegative).
+void BM_BladeRhsPaired(benchmark::State& st) {
+  using Fds = blade::BladeScene::System;
+  using Bodies = ContactSystem<double, BodyContact<double>>;
+  static const blade::BladeScene scene = blade::make_blade_scene(blade::BladeParameters{});
+  const bool slipping = st.range(0) != 0;
+  Fds& fds = *scene.system;
+  std::vector<RigidBody<double>> bodies;
+  std::vector<BodyContact<double>> contacts;
+  for (std::size_t i = 0; i < fds.dampers().size(); ++i) {
+    const auto part = point_damper_body(scene.frame, Eigen::Index(i), fds.dampers()[i], scene.parameters.model);
+    bodies.push_back(part.body);
+    contacts.push_back(part.contact);
+  }
+  Bodies body_sys(scene.frame, scene.basis, bodies, contacts, fds.loads());
+  const Eigen::Index n = scene.basis.size();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Eigen::VectorXd q(2 * n);
+  for (Eigen::Index k = 0; k < 2 * n; ++k) q[k] = 1e-5 * u(rng);
+
+  Fds::State xf = fds.initial_state(), dxf(xf.size());
+  Fds::Mode mf = fds.requested_mode();
+  Bodies::State xc = body_sys.initial_state(), dxc(xc.size());
+  Bodies::Mode mc = body_sys.requested_mode();
+  for (Eigen::Index i = 0; i < fds.num_dampers(); ++i) {
+    mf[i] = slipping ? ContactState::SlipPositive : ContactState::Stick;
+    mc[i] = slipping ? ContactState::SlipNegative : ContactState::Stick;
+  }
+  xf.head(2 * n) = q;  // q, q' lead FrictionDampedSystem's state
+  xc.head(n) = q.head(n);
+  xc.segment(body_sys.num_coordinates(), n) = q.tail(n);
+  Fds::State xf2 = xf;
+  Bodies::State xc2 = xc;
+  xf2.head(n) *= 1.0 + 1e-3;
+  xc2.head(n) *= 1.0 + 1e-3;
+  if (slipping && fds.contact_offset() >= 0) {
+    xf2.segment(fds.contact_offset(), fds.num_dampers()).array() += 1e-7;
+    xc2.segment(body_sys.contact_offset(), body_sys.num_moving()).array() += 1e-7;
+  }
+  constexpr int kBlock = 256;
+  using Clock = std::chrono::steady_clock;
+  double t = 0;
+  long k = 0;
+  auto fds_call = [&] {
+    t += 1e-9;
+    fds.rhs(mf, t, (++k & 1) ? xf2 : xf, dxf);
+    benchmark::DoNotOptimize(dxf.data());
+  };
+  auto body_call = [&] {
+    t += 1e-9;
+    body_sys.rhs(mc, t, (++k & 1) ? xc2 : xc, dxc);
+    benchmark::DoNotOptimize(dxc.data());
+  };
+  for (int b = 0; b < kBlock; ++b) {
+    fds_call();
+    body_call();
+  }
+  std::vector<double> fds_ns, body_ns, ratio;
+  for (auto _ : st) {
+    const auto t0 = Clock::now();
+    for (int b = 0; b < kBlock; ++b) fds_call();
+    const auto t1 = Clock::now();
+    for (int b = 0; b < kBlock; ++b) body_call();
+    const auto t2 = Clock::now();
+    fds_ns.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / kBlock);
+    body_ns.push_back(std::chrono::duration<double, std::nano>(t2 - t1).count() / kBlock);
+    ratio.push_back(body_ns.back() / fds_ns.back());
+  }
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  if (ratio.empty()) return;
+  st.counters["fds_ns"] = median(fds_ns);
+  st.counters["contact_ns"] = median(body_ns);
+  st.counters["ratio"] = median(ratio);
+  st.SetLabel(slipping ? "slipping" : "stuck");
+}
+BENCHMARK(BM_BladeRhsPaired)->Arg(0)->Arg(1)->Iterations(201);
 
 }  // namespace
 
