@@ -5,6 +5,7 @@
 /// several threads: SplitContinuation).
 
 #include "stickslip/steady_state/bifurcation.hpp"
+#include "stickslip/steady_state/branch_restart.hpp"
 #include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
