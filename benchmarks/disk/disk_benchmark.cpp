@@ -1,6 +1,7 @@
 // Cost of the bladed disk (docs/disks.md, "Cost"): a program writing CSV (one run; ratios from
 // that run; wall seconds on this thread):
-//   disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--out file.csv]
+//   disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only] [--out file.csv]
+// (--rhs-only: the right-hand sides only, a few seconds)
 // - rhs: one right-hand side of the example's disk (bladed_disk/disk_scene.hpp) of 6, 12, 24 and
 //   48 blades, m modes per nodal diameter (m N annulus modes, default 6), one damper per pair of
 //   neighbours, in the all-stuck mode at rest and in a sliding mode; the ratio 48 / 24 (target <= 2.2);
@@ -54,6 +55,13 @@ TravellingWaveOptions<double> wave_options() {
   return o;
 }
 
+void write_rows(const std::string& out) {
+  std::ofstream f(out);
+  f << "name,value,unit,note\n";
+  for (const auto& r : rows) f << r.name << ',' << r.value << ',' << r.unit << ",\"" << r.note << "\"\n";
+  std::printf("rows in %s\n", out.c_str());
+}
+
 /// Mean seconds of one rhs call in `mode` at `x` (calls repeated for at least 0.2 s).
 double rhs_seconds(System& sys, const System::Mode& mode, const System::State& x) {
   System::State dx(x.size());
@@ -71,7 +79,7 @@ double rhs_seconds(System& sys, const System::Mode& mode, const System::State& x
 int main(int argc, char** argv) {
   Index modes = 6, orbit_modes = 2;
   int frc_points = 100;
-  bool transient = true;
+  bool transient = true, rhs_only = false;
   std::string out = "disk_benchmark.csv";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -79,9 +87,10 @@ int main(int argc, char** argv) {
     else if (a == "--orbit-modes" && i + 1 < argc) orbit_modes = std::stol(argv[++i]);
     else if (a == "--frc-points" && i + 1 < argc) frc_points = std::stoi(argv[++i]);
     else if (a == "--skip-transient") transient = false;
+    else if (a == "--rhs-only") rhs_only = true;
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else {
-      std::fprintf(stderr, "usage: disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--out f]\n");
+      std::fprintf(stderr, "usage: disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only] [--out f]\n");
       return 2;
     }
   }
@@ -114,6 +123,10 @@ int main(int argc, char** argv) {
   }
   report("rhs_ratio_stuck_48_24", stuck48 / stuck24, "", "target <= 2.2");
   report("rhs_ratio_sliding_48_24", slip48 / slip24, "", "target <= 2.2");
+  if (rhs_only) {
+    write_rows(out);
+    return 0;
+  }
 
   // 2. A 1 s transient of the 24-blade disk.
   bladed_disk::DiskParameters p24;
@@ -196,9 +209,6 @@ int main(int argc, char** argv) {
            std::to_string(ok) + " converged, target <= 30 s for 100");
   }
 
-  std::ofstream f(out);
-  f << "name,value,unit,note\n";
-  for (const auto& r : rows) f << r.name << ',' << r.value << ',' << r.unit << ",\"" << r.note << "\"\n";
-  std::printf("rows in %s\n", out.c_str());
+  write_rows(out);
   return 0;
 }

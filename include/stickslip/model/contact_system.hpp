@@ -29,6 +29,7 @@
 #include <stickslip/model/contact_concept.hpp>
 #include <stickslip/model/damper_states.hpp>
 #include <stickslip/model/detail/body_contact_choices.hpp>
+#include <stickslip/model/detail/capacitance_factor.hpp>
 #include <stickslip/model/detail/contact_linear_workspace.hpp>
 #include <stickslip/model/detail/contact_machine.hpp>
 #include <stickslip/model/detail/moving_contact.hpp>
@@ -48,6 +49,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -261,6 +263,13 @@ class ContactSystem {
   using Machine = detail::contact_machine_t<Law>;
 
   void solve(const Mode& mode, Scalar t, const State& x) const;
+  bool constrained_solve() const;
+  void gather_constrained() const;
+  template <class Block>
+  void capacitance(Block&& C) const;
+  /// C of the last solve() in the top-left corner of C_, padded to 2D x 2D with a scaled
+  /// identity; rows_, cols_ and rate_ gathered (linear_part).
+  const Matrix& padded_capacitance() const;
   void body_forces(Scalar t, const State& x) const;
   void contact_kinematics(const State& x) const;
   bool has_stick_state(Index i) const {
@@ -337,11 +346,18 @@ class ContactSystem {
   mutable Matrix Hc_;                     // D x m: gap-rate rows of moving contacts (gap_rate_row)
   mutable Vector gdot_, hdot_;            // D: G' z', H' z' (the rows' rates times z')
   mutable Vector mu_;                     // D: f = mu N of a non-stuck closed unilateral contact
-  mutable Matrix rows_, cols_;            // 2D x m: constrained rows, directions of the unknowns
+  using RowMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  mutable RowMatrix rows_, cols_;         // 2D x m: constrained rows, directions of the unknowns
   mutable Vector rate_;                   // 2D: rows' rates times z' of the constrained rows
   mutable Matrix C_;                      // 2D x 2D, the constrained block in its top-left corner
   mutable Vector b_, lambda_;
-  mutable Eigen::FullPivLU<Matrix> lu_;
+  mutable Eigen::FullPivLU<Matrix> lu_;   // the impulses' padded C_
+  Matrix Gt_;                             // m x D: G_ transposed at assembly (constant where fixed_row_)
+  std::vector<char> fixed_row_;           // contact i's sliding row is constant (side a on the structure, b fixed)
+  /// Factorisations of C for sets of stuck contacts with constant rows, keyed by the set.
+  static constexpr Index capacitance_slots = 8;
+  mutable detail::CapacitanceCache<Scalar> capacitance_cache_;
+  mutable detail::CapacitanceFactor<Scalar> fresh_factor_;  // C of a set with state-dependent rows
   mutable std::vector<Index> unknown_;    // contact of each unknown; + D_ for a normal force
   detail::ContactLinearWorkspace<Scalar> lin_;  // linear_part's matrices (contact_system_linear.hpp)
 };

@@ -88,12 +88,12 @@ bool ContactSystem<Scalar_, Contact_>::linear_part(const Mode& mode, Scalar t, c
       w.known += e_.f[i] * G_.row(i).transpose();
 
   // The coupled solve's maps: L = -C^-1 G M^-1 (column by column through the factorised
-  // capacitance matrix that solve() left in C_, padded to 2D x 2D), Q = M^-1 (I + B^T L).
+  // capacitance matrix of solve()'s unknowns, padded to 2D x 2D), Q = M^-1 (I + B^T L).
   w.Q.setZero();
   w.Q.diagonal() = minv_;
   w.acc_rate.setZero();
   if (U > 0) {
-    w.lu.compute(C_);
+    w.lu.compute(padded_capacitance());
     for (Index c = 0; c < m_; ++c) {
       w.rhs.setZero();
       w.rhs.head(U) = -minv_[c] * rows_.col(c).head(U);

@@ -51,9 +51,9 @@ void ContactSystem<Scalar_, Contact_>::contact_kinematics(const State& x) const 
       e_.gap[i] = ndir_[iu].x() * x[o] + ndir_[iu].y() * x[o + 1] + ndir_[iu].dot(Rr - point_[iu]) +
                   H_.row(i).head(n_).dot(x.head(n_)) + gap0_[i];
     }
-    e_.v[i] = G_.row(i).dot(zd);
-    e_.vn[i] = H_.row(i).dot(zd);
   }
+  e_.v.noalias() = G_ * zd;
+  e_.vn.noalias() = H_ * zd;
   moving_rates(x);
 }
 
@@ -99,52 +99,114 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
     e.f[i] = detail::with_law(machines_[iu], [&](const auto& m) {
       return m.friction_force(s, e.v[i], e.N[i], Scalar(0));
     });
-    r_ += e.f[i] * G_.row(i).transpose();
+    if (fixed_row_[iu]) r_ += e.f[i] * Gt_.col(i);
+    else r_ += e.f[i] * G_.row(i).transpose();
   }
   e.qdd = minv_.cwiseProduct(r_);
-  const Index U = static_cast<Index>(unknown_.size());
-  if (U > 0) {
-    // C lambda = -(rows M^-1 r + rows' z'), C = rows M^-1 cols^T, in the top-left U x U block
-    // of C (the rest a multiple of the identity of the block's scale).
-    for (Index a = 0; a < U; ++a) {
-      const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
-      if (k >= D_) {
-        rows_.row(a) = gap_rate_row(i);
-        cols_.row(a) = H_.row(i) + mu_[i] * G_.row(i);
-        rate_[a] = hdot_[i];
-      } else {
-        rows_.row(a) = G_.row(i);
-        cols_.row(a) = G_.row(i);
-        rate_[a] = gdot_[i];
-      }
-    }
-    C_.setZero();
-    b_.setZero();
-    Scalar scale = 0;
-    for (Index a = 0; a < U; ++a) {
-      b_[a] = -(rows_.row(a).dot(e.qdd) + rate_[a]);
-      for (Index c = 0; c < U; ++c) C_(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
-      scale = std::max(scale, std::abs(C_(a, a)));
-    }
-    for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
-    lu_.compute(C_);
-    if (lu_.rank() < 2 * D_) {  // dependent constrained rows: the solve cannot split their forces
-      e.finite = false;
-      e.qdd.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
-      return;
-    }
-    lambda_ = lu_.solve(b_);
-    for (Index a = 0; a < U; ++a) {
-      const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
-      e.qdd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
-      if (k >= D_) e.N[i] = lambda_[a];
-      else e.f[i] = lambda_[a];
-    }
-    for (Index i = 0; i < D_; ++i)
-      if (mu_[i] != Scalar(0)) e.f[i] = mu_[i] * e.N[i];
+  if (!unknown_.empty() && !constrained_solve()) {  // dependent constrained rows: no split of their forces
+    e.finite = false;
+    e.qdd.setConstant(std::numeric_limits<Scalar>::quiet_NaN());
+    return;
   }
   if (!(isfinite(e.qdd.sum()) && isfinite(e.f.sum()) && isfinite(e.N.sum()) && isfinite(e.X.sum())))
     e.finite = false;
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::gather_constrained() const {
+  // Row a of the constrained rows, of the unknowns' directions and of the rows' rates times z'.
+  for (Index a = 0; a < static_cast<Index>(unknown_.size()); ++a) {
+    const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
+    if (k >= D_) {
+      rows_.row(a) = gap_rate_row(i);
+      cols_.row(a) = H_.row(i) + mu_[i] * G_.row(i);
+      rate_[a] = hdot_[i];
+    } else {
+      rows_.row(a) = G_.row(i);
+      cols_.row(a) = G_.row(i);
+      rate_[a] = gdot_[i];
+    }
+  }
+}
+
+template <class Scalar_, class Contact_>
+template <class Block>
+void ContactSystem<Scalar_, Contact_>::capacitance(Block&& C) const {
+  // C = rows M^-1 cols^T of the gathered rows (gather_constrained).
+  const Index U = static_cast<Index>(unknown_.size());
+  for (Index a = 0; a < U; ++a)
+    for (Index c = 0; c < U; ++c) C(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
+}
+
+template <class Scalar_, class Contact_>
+auto ContactSystem<Scalar_, Contact_>::padded_capacitance() const -> const Matrix& {
+  const Index U = static_cast<Index>(unknown_.size());
+  gather_constrained();
+  C_.setZero();
+  capacitance(C_.topLeftCorner(U, U));
+  Scalar scale = 0;
+  for (Index a = 0; a < U; ++a) scale = std::max(scale, std::abs(C_(a, a)));
+  for (Index a = U; a < 2 * D_; ++a) C_(a, a) = scale > 0 ? scale : Scalar(1);
+  return C_;
+}
+
+template <class Scalar_, class Contact_>
+bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
+  // C lambda = -(rows M^-1 r + rows' z'), C = rows M^-1 cols^T, with e_.qdd = M^-1 r on entry.
+  // Where every unknown is the friction force of a stuck contact with a constant row (side a on
+  // the structure, side b fixed: G_ row i = Gt_ column i for all time), C depends on the set of
+  // unknowns only, and its factorisation comes from the cache keyed by the set.
+  Evaluation& e = e_;
+  const Index U = static_cast<Index>(unknown_.size());
+  std::uint64_t key = 0;
+  for (const Index k : unknown_) {
+    if (k >= D_ || !fixed_row_[static_cast<std::size_t>(k)]) {
+      key = 0;
+      break;
+    }
+    key |= std::uint64_t(1) << k;
+  }
+  if (key != 0) {
+    const detail::CapacitanceFactor<Scalar>* lu = capacitance_cache_.find(key);
+    if (lu == nullptr) {
+      detail::CapacitanceFactor<Scalar>& f = capacitance_cache_.insert(key);
+      auto C = f.block(U);
+      for (Index a = 0; a < U; ++a) {
+        const auto ga = Gt_.col(unknown_[static_cast<std::size_t>(a)]);
+        for (Index c = a; c < U; ++c)  // symmetric: cols = rows
+          C(a, c) = C(c, a) = ga.dot(Gt_.col(unknown_[static_cast<std::size_t>(c)]).cwiseProduct(minv_));
+      }
+      f.factor(2 * D_);
+      lu = &f;
+    }
+    if (!lu->regular()) return false;
+    for (Index a = 0; a < U; ++a) {
+      const Index i = unknown_[static_cast<std::size_t>(a)];
+      lambda_[a] = -(Gt_.col(i).dot(e.qdd) + gdot_[i]);
+    }
+    lu->solve(lambda_);
+    for (Index a = 0; a < U; ++a) {
+      const Index i = unknown_[static_cast<std::size_t>(a)];
+      e.qdd += lambda_[a] * minv_.cwiseProduct(Gt_.col(i));
+      e.f[i] = lambda_[a];
+    }
+    return true;
+  }
+  gather_constrained();
+  capacitance(fresh_factor_.block(U));
+  fresh_factor_.factor(2 * D_);
+  if (!fresh_factor_.regular()) return false;
+  for (Index a = 0; a < U; ++a) lambda_[a] = -(rows_.row(a).dot(e.qdd) + rate_[a]);
+  fresh_factor_.solve(lambda_);
+  for (Index a = 0; a < U; ++a) {
+    const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
+    e.qdd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
+    if (k >= D_) e.N[i] = lambda_[a];
+    else e.f[i] = lambda_[a];
+  }
+  for (Index i = 0; i < D_; ++i)
+    if (mu_[i] != Scalar(0)) e.f[i] = mu_[i] * e.N[i];
+  return true;
 }
 
 }  // namespace stickslip
