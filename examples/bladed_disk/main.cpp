@@ -172,10 +172,20 @@ int main(int argc, char** argv) try {
               long(p.sectors), long(p.engine_order), long(engine_order_nodal_diameter(p.engine_order, p.sectors)), w_eo,
               long(scene.basis.size()), long(p.sectors));
 
-  // The linear limits on a fine grid, and the stuck disk's resonance.
+  // The linear limits, and the stuck disk's engine-order resonance: of the stuck disk's natural
+  // frequencies above 0.8 of the free one, the one where the EO response is largest (a natural
+  // frequency the EO load does not excite responds only through damping), refined on a grid of
+  // +-2 % around it. A resonance, not the end of a search grid: the mistuning window is around it.
   const bladed_disk::LinearDisk stuck(scene, true), free_disk(scene, false);
   double w_stuck = w_eo, a_stuck = 0;
-  for (double w : grid(0.8 * w_eo, 2.5 * w_eo, 800)) {
+  const Eigen::VectorXd stuck_frequencies = stuck.natural_frequencies();
+  for (Index j = 0; j < stuck_frequencies.size(); ++j) {
+    const double w = stuck_frequencies[j];
+    if (w < 0.8 * w_eo) continue;
+    const double a = stuck.tips(w).maxCoeff();
+    if (a > a_stuck) a_stuck = a, w_stuck = w;
+  }
+  for (double w : grid(0.98 * w_stuck, 1.02 * w_stuck, 201)) {
     const double a = stuck.tips(w).maxCoeff();
     if (a > a_stuck) a_stuck = a, w_stuck = w;
   }
