@@ -1,4 +1,4 @@
-// Cost of the bladed disk (docs/disks.md, "Cost"): a program writing CSV (one run; ratios from
+// Cost of the bladed disk (docs/measurements/disk_cost.md): a program writing CSV (one run; ratios from
 // that run; wall seconds on this thread):
 //   disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only] [--out file.csv]
 // (--rhs-only: the right-hand sides only, a few seconds)

@@ -158,7 +158,7 @@ struct RestartedBranch {
 /// all segments, the fraction of the range from the start covered by the farthest point, the
 /// CPU seconds of the whole so far, ContinuationProgress). on_point() sees each point with its
 /// segment's index. Throws std::invalid_argument for empty callbacks or invalid options (the
-/// message names the option: options.<name>, restart.<name>).
+/// message names the option: `options.<name>`, `restart.<name>`).
 template <class System>
 class RestartingContinuation {
  public:
