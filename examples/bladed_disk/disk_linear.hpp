@@ -54,14 +54,14 @@ class LinearDisk {
   }
   /// The undamped natural frequencies [rad/s] of the modal system, ascending: the retained modes'
   /// without dampers; with them stuck, those of diag(omega^2) on the null space of G (the motions
-  /// the stuck dampers allow), from an orthonormal basis Z of it: eig(Z^T diag(omega^2) Z).
+  /// the stuck dampers allow), from an orthonormal basis Z of it (the right singular vectors of G
+  /// beyond its rank): eig(Z^T diag(omega^2) Z).
   Eigen::VectorXd natural_frequencies() const {
     const Eigen::VectorXd w2 = scene_.basis.omega().array().square().matrix();
     if (G_.rows() == 0) return w2.cwiseSqrt();
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(G_);
-    lu.setThreshold(1e-10);
-    Eigen::HouseholderQR<Eigen::MatrixXd> qr(lu.kernel());
-    const Eigen::MatrixXd Z = qr.householderQ() * Eigen::MatrixXd::Identity(G_.cols(), lu.dimensionOfKernel());
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(G_, Eigen::ComputeFullV);
+    svd.setThreshold(1e-10);
+    const Eigen::MatrixXd Z = svd.matrixV().rightCols(G_.cols() - svd.rank());
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Z.transpose() * w2.asDiagonal() * Z, Eigen::EigenvaluesOnly);
     return eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
   }

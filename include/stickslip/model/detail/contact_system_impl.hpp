@@ -22,7 +22,7 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   m_ = n_ + 3 * B_;
   D_ = static_cast<Index>(contacts_.size());
   if (D_ > DamperStates::max_dampers)
-    detail::throw_invalid(where, "at most " + std::to_string(DamperStates::max_dampers) + " contacts, got", D_);
+    detail::throw_invalid(where, "at most " + std::to_string(DamperStates::max_dampers) + " contacts", D_);
   omega2_ = basis.omega().array().square();
   damping_ = basis.damping_coefficients();
   minv_.setOnes(m_);
