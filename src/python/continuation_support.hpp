@@ -312,8 +312,10 @@ struct ContinuationCallbacks {
     system = std::move(copy);
   }
   double period_of(double p) const {
-    if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked by continue_orbits
+    // Called from the continuation's worker threads (parts > 1), which do not hold the GIL: even
+    // reading a float object needs it.
     py::gil_scoped_acquire gil;
+    if (!PyCallable_Check(period->ptr())) return period->cast<double>();  // checked by continue_orbits
     return cast_as<double>((*period)(p), std::string(caller) + ": period(p) must return a float");
   }
   Mode mode_of(Sys& system, double t, const State& x, const Mode& previous) const {
