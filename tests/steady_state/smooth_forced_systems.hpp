@@ -13,6 +13,19 @@
 
 namespace steady_state_test {
 
+/// The event interface of a smooth system (Mode int, no guards): a base for test systems.
+template <class State>
+struct WithoutEvents {
+  Eigen::Index num_guards(const int&) const { return 0; }
+  void guards(const int&, double, const State&, Eigen::Matrix<double, Eigen::Dynamic, 1>&) const {}
+  stickslip::CrossingDirection guard_direction(const int&, Eigen::Index) const {
+    return stickslip::CrossingDirection::Either;
+  }
+  stickslip::TransitionAction transition(int&, const stickslip::TriggeredGuards&, double, State&) const {
+    return stickslip::TransitionAction::proceed();
+  }
+};
+
 template <int Dofs>
 class ForcedOscillator {
  public:

@@ -19,11 +19,21 @@
 /// stay regular in V+), and a pair of asymmetric orbits x and S x branches off along the
 /// antisymmetric Floquet vector. A multiplier of the V+ block through +1 is a fold of the
 /// symmetric branch (or a transcritical point within the symmetric orbits).
+///
+/// With a half-period shift (half_period_shift()) the symmetry maps a solution x(t) onto
+/// S x(t + T/2): mirror-image substructures forced in antiphase (the mirror maps F cos(w t) onto
+/// -F cos(w t) = F cos(w (t + T/2)); the paper's blade with its two dampers under a tangential
+/// tip force). A symmetric orbit has x(t0 + T/2) = S x(t0); its monodromy is M = H^2 with the
+/// half-period map H = S dx(t0 + T/2)/dx(t0), and a multiplier of M through +1 is a
+/// symmetry-breaking pitchfork where an eigenvalue of H crosses -1 (the Floquet vector v comes
+/// back after half a period as -S v), a fold where one crosses +1. Each classification then
+/// runs half a period with its sensitivity.
 
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/bifurcation.hpp>
 #include <stickslip/steady_state/continuation.hpp>
 #include <stickslip/steady_state/detail/branch_start.hpp>
+#include <stickslip/steady_state/detail/half_period_map.hpp>
 #include <stickslip/steady_state/shooting.hpp>
 
 #include <Eigen/Core>
@@ -110,6 +120,27 @@ class SymmetricBranches {
       detail::throw_invalid(where, "symmetry must be an involution (S S = I); max |S S - I|", defect);
   }
 
+  /// The symmetry acts with a half-period shift (see the file's description): x(t) solves the
+  /// equations iff S x(t + T/2) does, symmetric orbits have x(t0 + T/2) = S x(t0), and the
+  /// classification splits the multipliers by the half-period map's eigenvalues (-1: pitchfork,
+  /// +1: fold). Default false: x(t) solves them iff S x(t) does.
+  void half_period_shift(bool on) { half_ = on; }
+  /// The state the symmetry keeps fixed: the map is x -> c + S (x - c) (default c = 0, the map
+  /// S x). For coordinates that a mirror maps affinely, e.g. contact positions X measured from a
+  /// member's end, X -> L - X: give c the mirror-symmetric reference state. Throws
+  /// std::invalid_argument unless c is finite and of the symmetry's size.
+  void symmetry_centre(const State& c) {
+    static const std::string where = "SymmetricBranches::symmetry_centre";
+    check_size(where, c.size());
+    if (!detail::all_finite(c)) throw std::invalid_argument(where + ": c must be finite");
+    centre_ = c;
+    has_centre_ = true;
+  }
+  /// The image of a state: c + S (x - c) (S x without a centre).
+  State mirror(const State& x) const {
+    if (!has_centre_) return S_ * x;
+    return centre_ + S_ * (x - centre_);
+  }
   /// The mode of a mirrored state (default: the same mode).
   void mode_image(ModeImage f) { mode_image_ = std::move(f); }
   /// The start-mode rule of the continued branches and mirrored orbits (Continuation::start_mode).
@@ -121,11 +152,11 @@ class SymmetricBranches {
     sym_tol_ = relative;
   }
 
-  /// max |S x - x| over the periodic components (0 for a symmetric state). Throws
-  /// std::invalid_argument when x's size is not the symmetry's.
+  /// max |mirror(x) - x| over the periodic components (0 for a symmetric state; without a
+  /// half-period shift). Throws std::invalid_argument when x's size is not the symmetry's.
   Scalar asymmetry(const State& x) const {
     check_size("SymmetricBranches::asymmetry", x.size());
-    const State d = S_ * x - x;
+    const State d = mirror(x) - x;
     Scalar m = 0;
     for (const auto i : shooting_.periodic_indices(x.size())) m = std::max(m, std::abs(d[i]));
     return m;
@@ -134,11 +165,13 @@ class SymmetricBranches {
   /// The multipliers of a symmetric orbit's monodromy (PeriodicOrbit::monodromy, over the
   /// periodic components of a state of size n) split by the symmetry of their Floquet vectors:
   /// {those of M on V+, those of M on V-}. Throws std::invalid_argument when the sizes do not
-  /// match the symmetry's.
+  /// match the symmetry's, or with a half-period shift (the split then needs the half-period
+  /// map: half_period_multipliers()).
   std::pair<Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>, Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1>>
   multipliers_by_symmetry(const Matrix& monodromy, Eigen::Index n) const {
     static const std::string where = "SymmetricBranches::multipliers_by_symmetry";
     check_size(where, n);
+    if (half_) throw std::invalid_argument(where + ": with a half-period shift use half_period_multipliers(point)");
     const auto np = static_cast<Eigen::Index>(shooting_.periodic_indices(n).size());
     if (monodromy.rows() != np || monodromy.cols() != np)
       detail::throw_invalid(where, "monodromy must be square over the periodic components (" + std::to_string(np) +
@@ -151,6 +184,32 @@ class SymmetricBranches {
       return mu;
     };
     return {block(1), block(-1)};
+  }
+
+  /// With a half-period shift: the orbit at `point` (the system set to its parameter) run over
+  /// half its period, max |x(t0 + T/2) - S x(t0)| over the periodic components (0 for a
+  /// symmetric orbit) and the eigenvalues of the half-period map H (the orbit's multipliers are
+  /// their squares; an eigenvalue near -1 belongs to an antisymmetric Floquet vector). Not ok
+  /// (with the message) when the run fails. Throws std::invalid_argument without a half-period
+  /// shift or when the sizes do not match the symmetry's.
+  struct HalfPeriodMultipliers {
+    bool ok = false;                                             ///< the run succeeded
+    std::string message;                                         ///< why not
+    Scalar asymmetry = 0;                                        ///< max |x(t0 + T/2) - S x(t0)|
+    Eigen::Matrix<std::complex<Scalar>, Eigen::Dynamic, 1> eigenvalues;  ///< of H
+  };
+  /// See HalfPeriodMultipliers.
+  HalfPeriodMultipliers half_period_multipliers(const ContinuationPoint<System>& point) const {
+    static const std::string where = "SymmetricBranches::half_period_multipliers";
+    if (!half_) throw std::invalid_argument(where + ": needs half_period_shift(true)");
+    check_size(where, point.orbit.x0.size());
+    HalfPeriodMultipliers out;
+    const auto h = half_map(point, true);
+    out.ok = h.ok;
+    out.message = h.message;
+    out.asymmetry = h.asymmetry;
+    if (h.ok) out.eigenvalues = Eigen::EigenSolver<Matrix>(h.H, false).eigenvalues();
+    return out;
   }
 
   /// The multiplier through +1 between points `a` and `b` of a symmetric branch (a Fold or
@@ -208,27 +267,26 @@ class SymmetricBranches {
   // = Q B: B = Q^T M Q), with its Floquet vector Q w (max norm 1); NaN when there is none.
   Scalar nearest_plus_one(const Matrix& M, const Matrix& Q, Vector* v) const {
     if (Q.cols() == 0) return std::numeric_limits<Scalar>::quiet_NaN();
-    const Matrix B = Q.transpose() * M * Q;
-    const Eigen::EigenSolver<Matrix> es(B, v != nullptr);
-    const Scalar tol = shooting_.multiplier_tolerance;
-    Eigen::Index k = -1;
-    Scalar best = std::numeric_limits<Scalar>::infinity();
-    for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
-      const std::complex<Scalar> mu = es.eigenvalues()[i];
-      if (std::abs(mu.imag()) > tol * std::abs(mu)) continue;
-      if (std::abs(mu.real() - 1) < best) {
-        best = std::abs(mu.real() - 1);
-        k = i;
-      }
-    }
-    if (k < 0) return std::numeric_limits<Scalar>::quiet_NaN();
-    if (v) {
-      *v = Q * es.eigenvectors().col(k).real();
+    Vector w;
+    const Scalar mu = detail::nearest_real_eigenvalue(Matrix(Q.transpose() * M * Q), Scalar(1),
+                                                      shooting_.multiplier_tolerance, v ? &w : nullptr);
+    if (v && detail::is_finite(mu)) {
+      *v = Q * w;
       const Scalar s = v->cwiseAbs().maxCoeff();
       if (s > 0) *v /= s;
     }
-    return es.eigenvalues()[k].real();
+    return mu;
   }
+  // The half-period map of the orbit at `point` (the system set to its parameter).
+  detail::HalfPeriodMap<System> half_map(const ContinuationPoint<System>& point, bool sensitivity) const {
+    set_(sys_, point.parameter);
+    return detail::half_period_map(sys_, shooting_, S_, mirror(point.orbit.x0), point.orbit.mode, point.orbit.t0,
+                                   point.orbit.x0, point.orbit.period, sensitivity);
+  }
+  SymmetryBreakingPoint<System> classify_half(const ContinuationPoint<System>& a,
+                                              const ContinuationPoint<System>& b) const;
+  SymmetryBreakingPoint<System> locate_half(SymmetryBreakingPoint<System> c, const ContinuationPoint<System>& a,
+                                            const ContinuationPoint<System>& b, Scalar tolerance);
   // det(B - I) of M restricted to the subspace with orthonormal basis Q (1 for an empty one):
   // prod (mu_i - 1) over the block's multipliers, whose sign changes exactly when a real
   // multiplier crosses +1 (a complex pair contributes |mu - 1|^2 > 0).
@@ -255,6 +313,9 @@ class SymmetricBranches {
   ModeImage mode_image_;
   typename Cont::StartMode start_mode_;
   Scalar sym_tol_ = Scalar(1e-6);
+  bool half_ = false;
+  State centre_{};  // with has_centre_ only (a fixed-size State has no empty value)
+  bool has_centre_ = false;
 };
 
 template <class System>
@@ -264,6 +325,7 @@ SymmetryBreakingPoint<System> SymmetricBranches<System>::classify(const Continua
   const Eigen::Index n = a.orbit.x0.size();
   check_size("SymmetricBranches::classify", n);
   check_size("SymmetricBranches::classify", b.orbit.x0.size());
+  if (half_) return classify_half(a, b);
   for (const auto* pt : {&a, &b})
     if (!symmetric(pt->orbit.x0)) {
       c.message = "the orbit at p = " + detail::format_value(pt->parameter) +
@@ -318,6 +380,7 @@ SymmetryBreakingPoint<System> SymmetricBranches<System>::locate(const Continuati
     c.message = "the two points lie on different sections t0 (the continuation moved it between them)";
     return c;
   }
+  if (half_) return locate_half(std::move(c), a, b, tolerance);
   const Eigen::Index n = a.orbit.x0.size();
   const Matrix Qm = basis(n, -1);
   const auto P = shooting_.periodic_indices(n);
@@ -327,7 +390,7 @@ SymmetryBreakingPoint<System> SymmetricBranches<System>::locate(const Continuati
   // orbit made symmetric.
   const auto shoot = [&](Scalar p, const End& from, End& e, std::string& why) {
     State x = from.orbit.x0;
-    const State sx = S_ * x;
+    const State sx = mirror(x);
     for (const auto i : P) x[i] = (x[i] + sx[i]) / 2;
     set_(sys_, p);
     e.p = p;
@@ -385,7 +448,16 @@ ContinuationResult<System> SymmetricBranches<System>::asymmetric_branch(const Sy
     return result;
   }
   Shooting<System> shooting(sys_, shooting_);
-  if (!(asymmetry(orbit.x0) > 100 * shooting.tolerance_at(orbit.x0))) {
+  Scalar asym = 0;
+  if (half_) {
+    ContinuationPoint<System> first;
+    first.parameter = p;
+    first.orbit = orbit;
+    asym = half_map(first, false).asymmetry;  // NaN-free: 0 when the run fails (then: no branch)
+  } else {
+    asym = asymmetry(orbit.x0);
+  }
+  if (!(asym > 100 * shooting.tolerance_at(orbit.x0))) {
     result.message = "the first asymmetric orbit at p = " + detail::format_value(p) +
                      " is the symmetric orbit (raise the offset)";
     return result;
@@ -398,12 +470,26 @@ template <class System>
 ContinuationPoint<System> SymmetricBranches<System>::image(const ContinuationPoint<System>& point) {
   check_size("SymmetricBranches::image", point.orbit.x0.size());
   ContinuationPoint<System> out = point;
-  const State x = S_ * point.orbit.x0;
+  State x = mirror(point.orbit.x0);
+  Mode from = point.orbit.mode;
+  if (half_) {  // the image of x(t) is S x(t + T/2): at t0 it is S x(t0 + T/2)
+    const auto h = half_map(point, false);
+    if (!h.ok) {
+      out.orbit.status = ShootingStatus::IntegrationFailed;
+      out.orbit.message = h.message;
+      return out;
+    }
+    x = mirror(h.x_half);
+    from = h.mode_half;
+  }
   set_(sys_, point.parameter);
-  const Mode m = mirrored_mode(point.orbit.t0, x, point.orbit.mode);
+  const Mode m = mirrored_mode(point.orbit.t0, x, from);
   Shooting<System> shooting(sys_, shooting_);
   out.orbit = shooting.forced(m, point.orbit.t0, x, point.orbit.period);
   return out;
 }
 
 }  // namespace stickslip
+
+// classify_half and locate_half (the half-period shift).
+#include <stickslip/steady_state/detail/pitchfork_half_period.hpp>
