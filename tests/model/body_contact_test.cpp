@@ -28,6 +28,7 @@ using Vec2 = Eigen::Vector2d;
 using System = ContactSystem<double, BodyContact<double>>;
 using State = System::State;
 
+using wedge_scene::Ground;
 using wedge_scene::kPi;
 using wedge_scene::kPlatform;
 using wedge_scene::Platforms;
@@ -200,27 +201,27 @@ TEST(WedgeDamper, OneFaceSeparatesWhileTheOtherSlides) {
   EXPECT_LE(b.relative_residual(), 1e-7) << b.residual << " of " << b.scale;
 }
 
+// A body of 0.2 kg and 1e-4 kg m^2, without springs or loads.
+RigidBody<double> small_body() {
+  RigidBody<double> body;
+  body.mass = 0.2;
+  body.inertia = 1e-4;
+  return body;
+}
+
 // A body released at a gap g0 above ground, pressed towards it by P: free flight with
 // acceleration a = P / m lands at t1 = sqrt(2 g0 / a) with v = -a t1, leaves with e a t1 and
 // lands again after 2 e t1; each impact removes (1 - e^2) m v^2 / 2, booked in the audit.
 TEST(BodyContactLanding, BouncesWithRestitutionAsTheClosedFormFlight) {
-  FrameModel<double> frame;  // a structure the body never touches
-  const NodeId root = frame.add_node(0, 0), tip = frame.add_node(0, 0.1);
-  frame.add_member(root, tip, kPlatform, 2);
-  frame.clamp(root);
-  ModalOptions<double> mo;
-  mo.num_modes = 1;
-  const auto basis = compute_modes(frame.assemble(), mo);
-  RigidBody<double> body;
-  body.mass = 0.2;
-  body.inertia = 1e-4;
+  const Ground ground;  // a structure the body never touches
+  RigidBody<double> body = small_body();
   const double P = 4.0, g0 = 1e-3, e = 0.5;
   body.loads.push_back({PlaneDirection<double>::global_y(), -P, {}});
   auto contact = BodyContact<double>::on_ground({0, Vec2::Zero()}, PlaneDirection<double>::global_y(),
                                                 CoulombLaw<double>(0.3, 0.3), e);
   contact.initial_gap = g0;
   contact.initial_state = ContactState::Separated;
-  System sys(frame, basis, {body}, {contact});
+  System sys(ground.frame, ground.basis, {body}, {contact});
   State x = sys.initial_state();
   auto mode = sys.requested_mode();
   ASSERT_TRUE(sys.make_consistent(mode, 0.0, x));
@@ -237,6 +238,40 @@ TEST(BodyContactLanding, BouncesWithRestitutionAsTheClosedFormFlight) {
   const auto b = sys.energy_balance(result.x, 0.0);
   EXPECT_NEAR(b.friction_dissipation, lost, 1e-8 * lost);
   EXPECT_LE(b.relative_residual(), 1e-8);
+}
+
+// A body pressed on ground by P and pushed sideways by F, held at its centre of mass by stuck
+// contacts there. One contact (two unknowns: f, N): statics give N = P, f = -F and the body at
+// rest. Two or three contacts at that one point have dependent constraint rows (2, 4 or 6
+// unknowns, slipping or stuck): the split of the forces is undetermined and the evaluation
+// reports it as not finite, with z'' all NaN.
+TEST(BodyContactSolve, OnePointHoldsTheStaticsAndRepeatedPointsAreNotFinite) {
+  const Ground ground;  // a structure the body never touches
+  RigidBody<double> body = small_body();
+  const double P = 4.0, F = 0.5;
+  body.loads.push_back({PlaneDirection<double>::global_y(), -P, {}});
+  body.loads.push_back({PlaneDirection<double>::global_x(), F, {}});
+  const auto contact = BodyContact<double>::on_ground({0, Vec2::Zero()}, PlaneDirection<double>::global_y(),
+                                                      CoulombLaw<double>(0.3, 0.3));
+  {
+    System sys(ground.frame, ground.basis, {body}, {contact});
+    const auto& e = sys.evaluate(sys.requested_mode(), 0.0, sys.initial_state());
+    ASSERT_TRUE(e.finite);
+    // A 2 x 2 solve of entries 1 / m: rounding of a few ulps of the loads.
+    EXPECT_NEAR(e.N[0], P, 1e-13 * P);
+    EXPECT_NEAR(e.f[0], -F, 1e-13 * P);  // t = (n_y, -n_x) = global x
+    EXPECT_LE(e.qdd.tail(3).cwiseAbs().maxCoeff(), 1e-13 * P / body.mass);
+  }
+  for (const std::size_t copies : {2u, 3u}) {
+    System sys(ground.frame, ground.basis, {body}, std::vector<BodyContact<double>>(copies, contact));
+    for (const ContactState s : {ContactState::Stick, ContactState::SlipPositive}) {
+      auto mode = sys.requested_mode();
+      for (Eigen::Index i = 0; i < sys.num_contacts(); ++i) mode[i] = s;
+      const auto& e = sys.evaluate(mode, 0.0, sys.initial_state());
+      EXPECT_FALSE(e.finite) << copies << " contacts, state " << static_cast<int>(s);
+      EXPECT_TRUE(e.qdd.array().isNaN().all()) << copies << " contacts, state " << static_cast<int>(s);
+    }
+  }
 }
 
 TEST(BodyContactInputs, BadBodiesAndContactsAreRefusedNamingTheParameter) {

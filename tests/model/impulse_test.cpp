@@ -28,25 +28,12 @@ using Mixed = ContactSystem<double, AnyContact<double>>;
 using State = System::State;
 using contact_samples::Samples;
 using contact_samples::tight;
+using wedge_scene::Ground;
 using wedge_scene::kPi;
 using wedge_scene::kPlatform;
 using wedge_scene::Platforms;
 using wedge_scene::static_state;
 using wedge_scene::Wedge;
-
-/// A one-mode cantilever the bodies never touch (the scene needs a structure).
-struct Ground {
-  FrameModel<double> frame;
-  ModalBasis<double> basis;
-  Ground() {
-    const NodeId root = frame.add_node(0, 0), tip = frame.add_node(0, 0.1);
-    frame.add_member(root, tip, kPlatform, 2);
-    frame.clamp(root);
-    ModalOptions<double> mo;
-    mo.num_modes = 1;
-    basis = compute_modes(frame.assemble(), mo);
-  }
-};
 
 /// A body of mass m and inertia J whose point r (body coordinates) starts at gap g0 above
 /// ground (normal +y) with velocity (u, w) of the centre of mass and rotation rate omega; an

@@ -21,6 +21,20 @@ using Vec2 = Eigen::Vector2d;
 inline constexpr double kPi = 3.14159265358979323846;
 inline const SectionProperties<double> kPlatform{2.06e11, 7800, 1e-4, 1e-8};
 
+/// A one-mode cantilever the bodies never touch (the scene needs a structure).
+struct Ground {
+  FrameModel<double> frame;
+  ModalBasis<double> basis;
+  Ground() {
+    const NodeId root = frame.add_node(0, 0), tip = frame.add_node(0, 0.1);
+    frame.add_member(root, tip, kPlatform, 2);
+    frame.clamp(root);
+    ModalOptions<double> mo;
+    mo.num_modes = 1;
+    basis = compute_modes(frame.assemble(), mo);
+  }
+};
+
 /// Two horizontal cantilever platforms of length 0.125 m, clamped at x = -0.25 and x = +0.25,
 /// their tips (the platform points) at x = -0.125 and x = +0.125.
 struct Platforms {

@@ -267,6 +267,9 @@ class ContactSystem {
   void gather_constrained() const;
   template <class Block>
   void capacitance(Block&& C) const;
+  /// Side a's body of contact k % D (-1 on the structure): the entries where the rows of an
+  /// unknown of contact k can be nonzero.
+  Index body_of_unknown(Index k) const { return body_of_[static_cast<std::size_t>(k % D_)]; }
   /// C of the last solve() in the top-left corner of C_, padded to 2D x 2D with a scaled
   /// identity; rows_, cols_ and rate_ gathered (linear_part).
   const Matrix& padded_capacitance() const;
@@ -301,6 +304,16 @@ class ContactSystem {
   void landing_restitution(Index i, const State& x);
   void spring_extension(const State& x, Index b, const BodySpring<Scalar>& spring, Scalar& delta, Scalar& rate,
                         Eigen::Matrix<Scalar, 3, 1>& row) const;
+  /// As above, with turn = (cos theta, sin theta) of body b (detail::turn_of).
+  void spring_extension(const State& x, Index b, const Vector2& turn, const BodySpring<Scalar>& spring, Scalar& delta,
+                        Scalar& rate, Eigen::Matrix<Scalar, 3, 1>& row) const;
+  /// target += s row^T over the entries where a contact's row can be nonzero: the modes and side
+  /// a's body `body` (none when -1). The other entries of the row must be zero.
+  template <class Row, class Target>
+  void add_row(const Row& row, Index body, Scalar s, Target&& target) const;
+  /// row . z over the same entries (z: z', z'' or any m-vector).
+  template <class Row, class Z>
+  Scalar row_dot(const Row& row, Index body, const Z& z) const;
   static Vector load_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis, const Load& load,
                          Index l);
 
@@ -342,11 +355,14 @@ class ContactSystem {
   // Workspace of solve(): sized at construction, no allocation in a time step.
   mutable Evaluation e_;
   mutable Vector r_;                      // m: known generalised forces
-  mutable Matrix G_, H_;                  // D x m: full sliding / normal velocity rows
-  mutable Matrix Hc_;                     // D x m: gap-rate rows of moving contacts (gap_rate_row)
+  using RowMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // Rows are nonzero only on the modes and on side a's body (add_row, row_dot).
+  mutable RowMatrix G_, H_;               // D x m: full sliding / normal velocity rows
+  mutable RowMatrix Hc_;                  // D x m: gap-rate rows of moving contacts (gap_rate_row)
+  mutable std::vector<Vector2> turn_;     // B: (cos theta, sin theta) of each body at the solve's state
+  mutable Vector spring_rate_;            // every body spring's delta' at the solve's state, in order
   mutable Vector gdot_, hdot_;            // D: G' z', H' z' (the rows' rates times z')
   mutable Vector mu_;                     // D: f = mu N of a non-stuck closed unilateral contact
-  using RowMatrix = Eigen::Matrix<Scalar, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   mutable RowMatrix rows_, cols_;         // 2D x m: constrained rows, directions of the unknowns
   mutable Vector rate_;                   // 2D: rows' rates times z' of the constrained rows
   mutable Matrix C_;                      // 2D x 2D, the constrained block in its top-left corner

@@ -95,13 +95,26 @@ struct RigidBody {
 
 namespace detail {
 
+/// R(theta) r, with turn = (cos theta, sin theta) (one sine and cosine per body and evaluation,
+/// however many of its points are turned).
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> rotated(const Eigen::Matrix<Scalar, 2, 1>& turn, const Eigen::Matrix<Scalar, 2, 1>& r) {
+  const Scalar c = turn.x(), s = turn.y();
+  return {c * r.x() - s * r.y(), s * r.x() + c * r.y()};
+}
+
+/// (cos theta, sin theta), the argument `turn` of rotated().
+template <class Scalar>
+Eigen::Matrix<Scalar, 2, 1> turn_of(Scalar theta) {
+  using std::cos;
+  using std::sin;
+  return {cos(theta), sin(theta)};
+}
+
 /// R(theta) r.
 template <class Scalar>
 Eigen::Matrix<Scalar, 2, 1> rotated(Scalar theta, const Eigen::Matrix<Scalar, 2, 1>& r) {
-  using std::cos;
-  using std::sin;
-  const Scalar c = cos(theta), s = sin(theta);
-  return {c * r.x() - s * r.y(), s * r.x() + c * r.y()};
+  return rotated(turn_of(theta), r);
 }
 
 /// The body part of the row of a body point's velocity along d: d . (V + omega k x R r) =

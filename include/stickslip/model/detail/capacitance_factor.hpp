@@ -47,17 +47,42 @@ class CapacitanceFactor {
   }
 
   /// Factors the block filled through block(); `padded` is the order of the padded matrix of
-  /// the rank test (see the class).
+  /// the rank test (see the class). Orders up to 4 (a contact's friction and normal force, two
+  /// contacts) run on fixed-size blocks, with the same operations in the same order.
   void factor(Index padded) {
+    switch (size_) {
+      case 1: regular_ = factor_block(lu_.template topLeftCorner<1, 1>(), padded); break;
+      case 2: regular_ = factor_block(lu_.template topLeftCorner<2, 2>(), padded); break;
+      case 3: regular_ = factor_block(lu_.template topLeftCorner<3, 3>(), padded); break;
+      case 4: regular_ = factor_block(lu_.template topLeftCorner<4, 4>(), padded); break;
+      default: regular_ = factor_block(lu_.topLeftCorner(size_, size_), padded);
+    }
+  }
+
+  /// Overwrites the first size() entries of b with the solution of C x = b (after a regular
+  /// factor()).
+  template <class Vec>
+  void solve(Vec& b) const {
+    switch (size_) {
+      case 1: solve_block(lu_.template topLeftCorner<1, 1>(), b); break;
+      case 2: solve_block(lu_.template topLeftCorner<2, 2>(), b); break;
+      case 3: solve_block(lu_.template topLeftCorner<3, 3>(), b); break;
+      case 4: solve_block(lu_.template topLeftCorner<4, 4>(), b); break;
+      default: solve_block(lu_.topLeftCorner(size_, size_), b);
+    }
+  }
+
+ private:
+  // The factorisation of the U x U block A in place; returns the rank test.
+  template <class Block>
+  bool factor_block(Block A, Index padded) {
     using std::abs;
-    const Index U = size_;
-    auto A = lu_.topLeftCorner(U, U);
+    const Index U = A.rows();
     Scalar s = 0;
     for (Index a = 0; a < U; ++a) s = abs(A(a, a)) > s ? abs(A(a, a)) : s;
     if (!(s > 0)) s = Scalar(1);
     Scalar largest = U < padded ? s : Scalar(0);
     Scalar smallest = U < padded ? s : std::numeric_limits<Scalar>::infinity();
-    regular_ = false;
     for (Index k = 0; k < U; ++k) {
       Index p = k, q = k;
       Scalar big = -1;
@@ -66,7 +91,7 @@ class CapacitanceFactor {
           if (abs(A(i, j)) > big) big = abs(A(i, j)), p = i, q = j;
       row_[static_cast<std::size_t>(k)] = p;
       col_[static_cast<std::size_t>(k)] = q;
-      if (!(big > 0)) return;  // the rest of the block is zero (or not a number): rank < U
+      if (!(big > 0)) return false;  // the rest of the block is zero (or not a number): rank < U
       if (p != k) A.row(k).swap(A.row(p));
       if (q != k) A.col(k).swap(A.col(q));
       largest = big > largest ? big : largest;
@@ -78,15 +103,13 @@ class CapacitanceFactor {
         for (Index i = k + 1; i < U; ++i) A(i, j) -= A(i, k) * u;
       }
     }
-    regular_ = smallest > Scalar(padded) * std::numeric_limits<Scalar>::epsilon() * largest;
+    return smallest > Scalar(padded) * std::numeric_limits<Scalar>::epsilon() * largest;
   }
 
-  /// Overwrites the first size() entries of b with the solution of C x = b (after a regular
-  /// factor()).
-  template <class Vec>
-  void solve(Vec& b) const {
-    const Index U = size_;
-    const auto A = lu_.topLeftCorner(U, U);
+  // x = Q U^-1 L^-1 P b in the first U entries of b, A the factors of factor_block.
+  template <class Block, class Vec>
+  void solve_block(const Block& A, Vec& b) const {
+    const Index U = A.rows();
     for (Index k = 0; k < U; ++k) std::swap(b[k], b[row_[static_cast<std::size_t>(k)]]);  // P b
     for (Index k = 0; k < U; ++k)                                                     // L y = P b
       for (Index i = k + 1; i < U; ++i) b[i] -= A(i, k) * b[k];
@@ -97,7 +120,6 @@ class CapacitanceFactor {
     for (Index k = U - 1; k >= 0; --k) std::swap(b[k], b[col_[static_cast<std::size_t>(k)]]);  // x = Q z
   }
 
- private:
   Matrix lu_;
   std::vector<Index> row_, col_;  // the transpositions of P and Q, in the order of the steps
   Index size_ = 0;

@@ -88,6 +88,10 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   G_.leftCols(n_) = W_;
   H_.leftCols(n_) = Wn_;
   Hc_ = H_;
+  turn_.assign(bodies_.size(), Vector2(Scalar(1), Scalar(0)));
+  std::size_t springs = 0;
+  for (const Body& body : bodies_) springs += body.springs.size();
+  spring_rate_.setZero(static_cast<Index>(springs));
   gdot_.setZero(D_);
   hdot_.setZero(D_);
   mu_.setZero(D_);
@@ -178,9 +182,16 @@ template <class Scalar_, class Contact_>
 void ContactSystem<Scalar_, Contact_>::spring_extension(const State& x, Index b, const BodySpring<Scalar>& spring,
                                                         Scalar& delta, Scalar& rate,
                                                         Eigen::Matrix<Scalar, 3, 1>& row) const {
+  spring_extension(x, b, detail::turn_of(x[body_offset(b) + 2]), spring, delta, rate, row);
+}
+
+template <class Scalar_, class Contact_>
+void ContactSystem<Scalar_, Contact_>::spring_extension(const State& x, Index b, const Vector2& turn,
+                                                        const BodySpring<Scalar>& spring, Scalar& delta, Scalar& rate,
+                                                        Eigen::Matrix<Scalar, 3, 1>& row) const {
   const Index o = body_offset(b);
   const Vector2 d(spring.direction.x, spring.direction.y);
-  const Vector2 Rr = detail::rotated(x[o + 2], spring.point);
+  const Vector2 Rr = detail::rotated(turn, spring.point);
   row = detail::body_point_row(d, Rr);
   delta = d.x() * x[o] + d.y() * x[o + 1] + d.dot(Rr - spring.point);
   rate = row.dot(x.template segment<3>(m_ + o));
@@ -207,14 +218,13 @@ void ContactSystem<Scalar_, Contact_>::rhs(const Mode& mode, Scalar t, const Sta
     Scalar external = 0, viscous = damping_.dot(qd.cwiseAbs2());
     for (std::size_t l = 0; l < loads_.size(); ++l)
       external += loads_[l].value(t) * Phi_.col(static_cast<Index>(l)).dot(qd);
+    Index k = 0;  // the springs' rates at x, from solve()
     for (Index b = 0; b < B_; ++b) {
       const Body& body = bodies_[static_cast<std::size_t>(b)];
       const Index o = m_ + body_offset(b);
       for (const auto& load : body.loads) external += load(t) * (load.direction.x * x[o] + load.direction.y * x[o + 1]);
       for (const auto& spring : body.springs) {
-        Scalar delta, rate;
-        Eigen::Matrix<Scalar, 3, 1> row;
-        spring_extension(x, b, spring, delta, rate, row);
+        const Scalar rate = spring_rate_[k++];
         viscous += spring.damping * rate * rate;
       }
     }

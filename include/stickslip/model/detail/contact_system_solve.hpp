@@ -9,11 +9,35 @@
 namespace stickslip {
 
 template <class Scalar_, class Contact_>
+template <class Row, class Target>
+void ContactSystem<Scalar_, Contact_>::add_row(const Row& row, Index body, Scalar s, Target&& target) const {
+  target.head(n_) += s * row.head(n_).transpose();
+  if (body >= 0) {
+    const Index o = body_offset(body);
+    target.template segment<3>(o) += s * row.template segment<3>(o).transpose();
+  }
+}
+
+template <class Scalar_, class Contact_>
+template <class Row, class Z>
+auto ContactSystem<Scalar_, Contact_>::row_dot(const Row& row, Index body, const Z& z) const -> Scalar {
+  Scalar sum = row.head(n_).dot(z.head(n_).transpose());
+  if (body >= 0) {
+    const Index o = body_offset(body);
+    sum += row.template segment<3>(o).dot(z.template segment<3>(o).transpose());
+  }
+  return sum;
+}
+
+template <class Scalar_, class Contact_>
 void ContactSystem<Scalar_, Contact_>::body_forces(Scalar t, const State& x) const {
   // Loads at the centre of mass, springs and dashpots at their points: -(k delta + c delta') times
   // the point's row [d, d . (k x R r)] (the generalised force of a force along d at the point).
+  // Each body's cos theta, sin theta once, for its springs here and its contacts' rows.
+  Index k = 0;
   for (Index b = 0; b < B_; ++b) {
     const Body& body = bodies_[static_cast<std::size_t>(b)];
+    const Vector2& turn = turn_[static_cast<std::size_t>(b)] = detail::turn_of(x[body_offset(b) + 2]);
     Eigen::Matrix<Scalar, 3, 1> F = Eigen::Matrix<Scalar, 3, 1>::Zero();
     for (const auto& load : body.loads) {
       const Scalar value = load(t);
@@ -23,7 +47,8 @@ void ContactSystem<Scalar_, Contact_>::body_forces(Scalar t, const State& x) con
     for (const auto& spring : body.springs) {
       Scalar delta, rate;
       Eigen::Matrix<Scalar, 3, 1> row;
-      spring_extension(x, b, spring, delta, rate, row);
+      spring_extension(x, b, turn, spring, delta, rate, row);
+      spring_rate_[k++] = rate;  // the audit's dashpot power c delta'^2 (rhs)
       F -= (spring.stiffness * delta + spring.damping * rate) * row;
     }
     r_.template segment<3>(body_offset(b)) = F;
@@ -42,18 +67,18 @@ void ContactSystem<Scalar_, Contact_>::contact_kinematics(const State& x) const 
     const Index body = body_of_[iu];
     if (body >= 0) {
       const Index o = body_offset(body);
-      const Vector2 Rr = detail::rotated(x[o + 2], point_[iu]);
+      const Vector2 Rr = detail::rotated(turn_[static_cast<std::size_t>(body)], point_[iu]);
       const Scalar omega = zd[o + 2];
       G_.row(i).template segment<3>(o) = detail::body_point_row(tdir_[iu], Rr).transpose();
       H_.row(i).template segment<3>(o) = detail::body_point_row(ndir_[iu], Rr).transpose();
       gdot_[i] = -omega * omega * tdir_[iu].dot(Rr);
       hdot_[i] = -omega * omega * ndir_[iu].dot(Rr);
       e_.gap[i] = ndir_[iu].x() * x[o] + ndir_[iu].y() * x[o + 1] + ndir_[iu].dot(Rr - point_[iu]) +
-                  H_.row(i).head(n_).dot(x.head(n_)) + gap0_[i];
+                  H_.row(i).head(n_).dot(x.head(n_).transpose()) + gap0_[i];
     }
+    e_.v[i] = row_dot(G_.row(i), body, zd);
+    e_.vn[i] = row_dot(H_.row(i), body, zd);
   }
-  e_.v.noalias() = G_ * zd;
-  e_.vn.noalias() = H_ * zd;
   moving_rates(x);
 }
 
@@ -91,7 +116,7 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
       continue;
     }
     e.N[i] = contacts_[iu].normal_force(t);
-    if (body_of_[iu] >= 0) r_ += e.N[i] * H_.row(i).transpose();  // a held normal acts along n
+    if (body_of_[iu] >= 0) add_row(H_.row(i), body_of_[iu], e.N[i], r_);  // a held normal acts along n
     if (stuck) {
       unknown_.push_back(i);
       continue;
@@ -99,8 +124,8 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
     e.f[i] = detail::with_law(machines_[iu], [&](const auto& m) {
       return m.friction_force(s, e.v[i], e.N[i], Scalar(0));
     });
-    if (fixed_row_[iu]) r_ += e.f[i] * Gt_.col(i);
-    else r_ += e.f[i] * G_.row(i).transpose();
+    if (fixed_row_[iu]) r_.head(n_) += e.f[i] * Gt_.col(i).head(n_);  // a fixed row lies on the modes
+    else add_row(G_.row(i), body_of_[iu], e.f[i], r_);
   }
   e.qdd = minv_.cwiseProduct(r_);
   if (!unknown_.empty() && !constrained_solve()) {  // dependent constrained rows: no split of their forces
@@ -132,10 +157,20 @@ void ContactSystem<Scalar_, Contact_>::gather_constrained() const {
 template <class Scalar_, class Contact_>
 template <class Block>
 void ContactSystem<Scalar_, Contact_>::capacitance(Block&& C) const {
-  // C = rows M^-1 cols^T of the gathered rows (gather_constrained).
+  // C = rows M^-1 cols^T of the gathered rows (gather_constrained), over the entries where both
+  // can be nonzero: the modes (M^-1 = I there) and, for two unknowns on one body, its three.
   const Index U = static_cast<Index>(unknown_.size());
-  for (Index a = 0; a < U; ++a)
-    for (Index c = 0; c < U; ++c) C(a, c) = rows_.row(a).dot(cols_.row(c).cwiseProduct(minv_.transpose()));
+  for (Index a = 0; a < U; ++a) {
+    const Index body = body_of_unknown(unknown_[static_cast<std::size_t>(a)]);
+    for (Index c = 0; c < U; ++c) {
+      Scalar sum = rows_.row(a).head(n_).dot(cols_.row(c).head(n_));
+      if (body >= 0 && body == body_of_unknown(unknown_[static_cast<std::size_t>(c)])) {
+        const Index o = body_offset(body);
+        for (Index j = o; j < o + 3; ++j) sum += rows_(a, j) * (cols_(c, j) * minv_[j]);
+      }
+      C(a, c) = sum;
+    }
+  }
 }
 
 template <class Scalar_, class Contact_>
@@ -180,14 +215,14 @@ bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
       lu = &f;
     }
     if (!lu->regular()) return false;
-    for (Index a = 0; a < U; ++a) {
+    for (Index a = 0; a < U; ++a) {  // a fixed row lies on the modes, where M^-1 = I
       const Index i = unknown_[static_cast<std::size_t>(a)];
-      lambda_[a] = -(Gt_.col(i).dot(e.qdd) + gdot_[i]);
+      lambda_[a] = -(Gt_.col(i).head(n_).dot(e.qdd.head(n_)) + gdot_[i]);
     }
     lu->solve(lambda_);
     for (Index a = 0; a < U; ++a) {
       const Index i = unknown_[static_cast<std::size_t>(a)];
-      e.qdd += lambda_[a] * minv_.cwiseProduct(Gt_.col(i));
+      e.qdd.head(n_) += lambda_[a] * Gt_.col(i).head(n_);
       e.f[i] = lambda_[a];
     }
     return true;
@@ -196,11 +231,14 @@ bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
   capacitance(fresh_factor_.block(U));
   fresh_factor_.factor(2 * D_);
   if (!fresh_factor_.regular()) return false;
-  for (Index a = 0; a < U; ++a) lambda_[a] = -(rows_.row(a).dot(e.qdd) + rate_[a]);
+  for (Index a = 0; a < U; ++a)
+    lambda_[a] = -(row_dot(rows_.row(a), body_of_unknown(unknown_[static_cast<std::size_t>(a)]), e.qdd) + rate_[a]);
   fresh_factor_.solve(lambda_);
-  for (Index a = 0; a < U; ++a) {
-    const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_;
-    e.qdd += lambda_[a] * minv_.cwiseProduct(cols_.row(a).transpose());
+  for (Index a = 0; a < U; ++a) {  // z'' += lambda_a M^-1 cols_a
+    const Index k = unknown_[static_cast<std::size_t>(a)], i = k % D_, body = body_of_unknown(k);
+    e.qdd.head(n_) += lambda_[a] * cols_.row(a).head(n_).transpose();
+    if (body >= 0)
+      for (Index j = body_offset(body); j < body_offset(body) + 3; ++j) e.qdd[j] += lambda_[a] * (minv_[j] * cols_(a, j));
     if (k >= D_) e.N[i] = lambda_[a];
     else e.f[i] = lambda_[a];
   }
