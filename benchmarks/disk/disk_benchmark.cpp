@@ -1,7 +1,10 @@
 // Cost of the bladed disk (docs/measurements/disk_cost.md): a program writing CSV (one run; ratios from
 // that run; wall seconds on this thread):
-//   disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only] [--out file.csv]
-// (--rhs-only: the right-hand sides only, a few seconds)
+//   disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only]
+//                  [--transient-only] [--blades N] [--duration T] [--integrator name] [--out file.csv]
+// (--rhs-only: the right-hand sides only, a few seconds; --transient-only: the transient only, of
+// --blades blades (default 24) over --duration seconds (default 1) with --integrator (default
+// auto), its CPU time and, with the exponential method, the stepper's work counters)
 // - rhs: one right-hand side of the example's disk (bladed_disk/disk_scene.hpp) of 6, 12, 24 and
 //   48 blades, m modes per nodal diameter (m N annulus modes, default 6), one damper per pair of
 //   neighbours, in the all-stuck mode at rest and in a sliding mode; the ratio 48 / 24 (target <= 2.2);
@@ -20,6 +23,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -32,6 +36,7 @@ using bladed_disk::System;
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double cpu_seconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
 
 struct Row {
   std::string name;
@@ -74,12 +79,66 @@ double rhs_seconds(System& sys, const System::Mode& mode, const System::State& x
   return since(t0) / double(calls);
 }
 
+/// The example's disk of `blades` blades and `modes` modes per nodal diameter.
+bladed_disk::DiskParameters disk_parameters(Index blades, Index modes) {
+  bladed_disk::DiskParameters p;
+  p.sectors = blades;
+  p.modes_per_family = modes;
+  return p;
+}
+
+/// Rest, in the requested mode made consistent.
+void at_rest(System& sys, System::State& x, System::Mode& mode) {
+  x = sys.initial_state();
+  mode = sys.requested_mode();
+  sys.make_consistent(mode, 0.0, x);
+}
+
+/// The transient of `blades` blades from rest at the EO resonance over `duration` seconds with
+/// `integrator`: wall and CPU seconds, steps, events; with the exponential method (chosen or
+/// asked) also a second run by ExactLinearStepper itself for its work counters.
+void transient_run(Index blades, Index modes, double duration, Integrator integrator, double N0) {
+  const bladed_disk::DiskScene scene(disk_parameters(blades, modes));
+  System sys = scene.system(scene.engine_order_frequency(), N0);
+  System::State x;
+  System::Mode mode;
+  at_rest(sys, x, mode);
+  RunOptions<double> opt;
+  opt.integrator = integrator;
+  const std::string name = "transient_N" + std::to_string(blades) + "_" + std::to_string(duration) + "s";
+  const auto t0 = Clock::now();
+  const double c0 = cpu_seconds();
+  const auto r = simulate(sys, mode, 0.0, x, duration, opt);
+  const double wall = since(t0), cpu = cpu_seconds() - c0;
+  report(name, wall, "s",
+         r.method + ", " + std::to_string(r.stats.accepted_steps) + " steps, " + std::to_string(r.stats.rejected_steps) +
+             " rejected, " + std::to_string(r.stats.events) + " events, " + std::to_string(r.stats.rhs_evaluations) +
+             " rhs, " + std::string(to_string(r.status)));
+  report(name + "_cpu", cpu, "s", r.method_reason);
+  std::printf("final |x| %.17g\n", r.x.norm());
+  if (r.method != std::string(to_string(Integrator::Exponential))) return;
+  System again = scene.system(scene.engine_order_frequency(), N0);
+  ExactLinearStepper<System> stepper(again);
+  const double c1 = cpu_seconds();
+  stepper.integrate(mode, 0.0, x, duration);
+  const ExactStepperStats& w = stepper.work();
+  report(name + "_exponential_cpu", cpu_seconds() - c1, "s",
+         std::to_string(w.exact_steps) + " exact steps, " + std::to_string(w.exponential_steps) + " Lawson steps, " +
+             std::to_string(w.linear_part_calls) + " linear parts, " + std::to_string(w.eigen_decompositions) +
+             " eigen-decompositions, " + std::to_string(w.propagator_exponentials) + " exponentials, " +
+             std::to_string(w.mode_cache_hits) + " cache hits, " + std::to_string(w.matvecs) + " matvecs, " +
+             std::to_string(w.long_steps) + " long steps, " + std::to_string(w.grazing_refinements) + " grazing");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   Index modes = 6, orbit_modes = 2;
   int frc_points = 100;
-  bool transient = true, rhs_only = false;
+  bool transient = true, rhs_only = false, transient_only = false;
+  Index blades = 24;
+  double duration = 1.0;
+  std::string integrator = "auto";
   std::string out = "disk_benchmark.csv";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -88,24 +147,31 @@ int main(int argc, char** argv) {
     else if (a == "--frc-points" && i + 1 < argc) frc_points = std::stoi(argv[++i]);
     else if (a == "--skip-transient") transient = false;
     else if (a == "--rhs-only") rhs_only = true;
+    else if (a == "--transient-only") transient_only = true;
+    else if (a == "--blades" && i + 1 < argc) blades = std::stol(argv[++i]);
+    else if (a == "--duration" && i + 1 < argc) duration = std::stod(argv[++i]);
+    else if (a == "--integrator" && i + 1 < argc) integrator = argv[++i];
     else if (a == "--out" && i + 1 < argc) out = argv[++i];
     else {
-      std::fprintf(stderr, "usage: disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] [--rhs-only] [--out f]\n");
+      std::fprintf(stderr, "usage: disk_benchmark [--modes m] [--orbit-modes m] [--frc-points n] [--skip-transient] "
+                           "[--rhs-only] [--transient-only] [--blades N] [--duration T] [--integrator name] [--out f]\n");
       return 2;
     }
   }
   const double N0 = 8.0;
+  if (transient_only) {
+    transient_run(blades, modes, duration, parse_integrator(integrator), N0);
+    write_rows(out);
+    return 0;
+  }
   // 1. The right-hand side against the number of blades.
   double stuck24 = 0, stuck48 = 0, slip24 = 0, slip48 = 0;
   for (Index N : {Index(6), Index(12), Index(24), Index(48)}) {
-    bladed_disk::DiskParameters p;
-    p.sectors = N;
-    p.modes_per_family = modes;
-    const bladed_disk::DiskScene scene(p);
+    const bladed_disk::DiskScene scene(disk_parameters(N, modes));
     System sys = scene.system(scene.engine_order_frequency(), N0);
-    System::State x = sys.initial_state();
-    System::Mode mode = sys.requested_mode();
-    sys.make_consistent(mode, 0.0, x);
+    System::State x;
+    System::Mode mode;
+    at_rest(sys, x, mode);
     const double stuck = rhs_seconds(sys, mode, x);
     // Sliding: the stuck closed form's rates at a frequency where the load beats friction.
     const bladed_disk::LinearDisk lin(scene, false);

@@ -104,6 +104,14 @@ std::vector<StepRate<typename System::Scalar>> named_step_rates(const System& sy
 
 /// Dormand-Prince 5(4)'s stability boundary on the negative real axis: h |lambda| <= ~3.3.
 constexpr double kDopriRealStability = 3.3;
+/// Largest order d of the linear part (LinearPart::size(), the x_L = (z, z') of twice the modes)
+/// for which Auto takes the exponential method. Its set-up per new mode (an eigen-decomposition,
+/// two Padé exponentials and about 8 squarings of order d) costs O(d^3) and each of its grid steps
+/// O(d^2) products (the quadratures' Gauss-Legendre nodes: ~60 per step), against six right-hand
+/// sides per Dormand-Prince step. Measured on the bladed disk with its energy audit at rtol 1e-6
+/// (docs/measurements/disk_cost.md): Dormand-Prince was 3-4x cheaper at d = 12 to 48 and 17x
+/// (d = 72) to 116x (d = 288) cheaper above, where modes change every few tens of grid steps.
+constexpr Eigen::Index kExponentialMaxOrder = 64;
 /// How many times fewer steps Rosenbrock23 must take to be chosen: its step costs a Jacobian (the
 /// system's or n finite differences), an LU factorisation and two solves, against six RHS
 /// evaluations of a Dormand-Prince step.
@@ -112,7 +120,10 @@ constexpr double kImplicitStepCost = 10.0;
 }  // namespace detail
 
 /// The rule of Integrator::Auto for `system` starting in `mode` at (t0, x0), run to t_end:
-///  1. Exponential when the system has linear_part and every mode is exactly linear: its
+///  1. Exponential when the system has linear_part, its linear part is of order d <=
+///     detail::kExponentialMaxOrder (64; beyond, the propagators of each new mode, O(d^3), and
+///     the grid steps' products, O(d^2), cost more than Dormand-Prince's steps) and every mode is
+///     exactly linear: its
 ///     every_mode_exact() when it has one (FrictionDampedSystem: no time_function load, every
 ///     contact fixed and every law a CoulombLaw), else linear_part of the start mode reports
 ///     exact. Within a mode the method is then exact; its cost does not depend on the tolerance.
@@ -130,8 +141,9 @@ constexpr double kImplicitStepCost = 10.0;
 ///     implicit one takes 10x fewer steps (detail::kImplicitStepCost: its step is dearer): the
 ///     problem is stiff at this tolerance.
 ///  3. DormandPrince54 otherwise.
-/// Costs one linear_part call (rule 1 without every_mode_exact, rule 1b with it), one
-/// eigen-decomposition (rule 1b) and one rates call.
+/// Costs one linear_part call (rule 1 without every_mode_exact, rule 1b with it, and rule 1 with
+/// it when the state has more than 64 components), one eigen-decomposition (rule 1b) and one
+/// rates call.
 template <class System>
 IntegratorChoice choose_integrator(System& system, const typename System::Mode& mode,
                                    typename System::Scalar t0, const typename System::State& x0,
@@ -152,16 +164,29 @@ IntegratorChoice choose_integrator(System& system, const typename System::Mode& 
       why = exact ? "the start mode's linear part is exact"
                   : "the start mode's linear part is not exact";
     }
-    if (exact) {
+    // The linear part's order d (<= the state's size: a linear_part call only where that is
+    // above the limit).
+    Eigen::Index order = x0.size();
+    if (order > detail::kExponentialMaxOrder) {
+      LinearPart<Scalar> lp;
+      lp.want_inexact_guards = false;
+      if (system.linear_part(mode, t0, x0, lp)) order = lp.size();
+    }
+    const bool small = order <= detail::kExponentialMaxOrder;
+    if (exact && small) {
       c.integrator = Integrator::Exponential;
       c.reason = why + ": exponential method";
       return c;
     }
+    if (!small)
+      why += ", but the linear part's order " + std::to_string(order) + " is above " +
+             std::to_string(detail::kExponentialMaxOrder) +
+             " (the exponential method's propagators of each new mode cost O(d^3))";
     if constexpr (detail::has_every_mode_exact<System>::value) {
       // Rule 1b: the run provably stays in an exact start mode (a stuck scene).
       LinearPart<Scalar> lp;
       lp.want_inexact_guards = false;  // only an exact mode's guards are used
-      if (system.linear_part(mode, t0, x0, lp) && lp.exact) {
+      if (small && !exact && system.linear_part(mode, t0, x0, lp) && lp.exact) {
         const Eigen::Matrix<Scalar, Eigen::Dynamic, 1> start = x0.head(lp.size());
         const ModeResidence<Scalar> stay = mode_residence<Scalar>(lp, t0, start, t_end);
         if (stay.stays) {

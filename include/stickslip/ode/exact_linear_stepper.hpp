@@ -113,6 +113,13 @@ class ExactLinearStepper {
   /// the class comment).
   static constexpr int jump_levels = 8;
 
+  /// Augmented generators Â of more than this order (Â is (state + 1 + 2 K) square) defer their
+  /// grid ladder (see set_deferred_ladders): its set-up, two Padé exponentials and about 8
+  /// squarings, ~44 d^3 flops, is the price of ~d Taylor steps of ~25 extra products of 2 d^2
+  /// flops each, while such a mode may last a few tens of grid steps (a bladed disk: d ~ 300, a
+  /// switch every ~20 steps).
+  static constexpr Eigen::Index eager_ladder_order = 64;
+
   /// Inexact modes whose linear part gives frozen affine guards (LinearPart::Gx in an inexact
   /// mode): Lawson steps of up to 2^slip_levels grid steps where the guards' rate bound shows
   /// that none can reach its trigger (see the class comment); else steps are capped at the grid
@@ -155,6 +162,13 @@ class ExactLinearStepper {
     flow_.set_cache_size(entries);
     blocks_.clear();
   }
+
+  /// Deferred grid ladders (default on): an exact mode whose Â is of order d > eager_ladder_order
+  /// and not in the mode cache propagates by Taylor series (AugmentedFlow::expv without a
+  /// ladder: exact to round-off, the same grid) until it has lasted d grid steps, and only then
+  /// computes its ladder of propagators (and enters the mode cache); a short mode never pays for
+  /// it. Off: every exact mode computes its ladder at its start. The two differ by round-off.
+  void set_deferred_ladders(bool on) noexcept { defer_ladders_ = on; }
 
   /// Long Lawson steps in inexact modes that give frozen affine guards (docs/ode_exponential.md, "Long
   /// slipping steps"): off by default - on the blade model they cost more (bounds and stage
@@ -370,6 +384,9 @@ class ExactLinearStepper {
   std::uint64_t slip_generation_ = 0;
   Scalar slip_delta_ = 0;
   bool frozen_ = false, slip_retry_ = false, long_slip_ = false;
+  // An exact mode's ladder waits (set_deferred_ladders): ladder_waits_ until the mode lasted
+  // flow_.dim() grid steps.
+  bool defer_ladders_ = true, ladder_waits_ = false;
   Vector absr_;
   GuardVector free_g0_, free_s0_, free_g1_, free_s1_, rbound_;
   // The 14 guard-sized vectors above, parked per guard count (see start_mode).
@@ -455,7 +472,9 @@ bool ExactLinearStepper<System>::refresh_linear_part(const Mode& m, Scalar t, bo
   // Ladder base: the grid step, or 1 / ||Â|| where the mode has no rate (then no ladder needed).
   // Only exact modes go to the mode cache: a frozen inexact Â (a moving contact) rarely recurs
   // and would evict the few modes of a stick-slip run that do.
-  flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_, exact_);
+  ladder_waits_ = defer_ladders_ && exact_ && flow_.dim() > eager_ladder_order && !flow_.has_ladder() &&
+                  std::isfinite(delta_);
+  if (!ladder_waits_) flow_.prepare(std::isfinite(delta_) ? delta_ : Scalar(0), work_, exact_);
   lawson_.initialize(flow_.dim());
   for (Vector* v : {&y1_, &ys_, &r_, &r1_, &rs_, &yq_, &y_chain_, &near_y_}) v->resize(flow_.dim());
   // Closed-form pieces of an exact mode: dropped when Â, the grid step or the forms changed.
@@ -1170,6 +1189,10 @@ auto ExactLinearStepper<System>::integrate(Mode mode, Scalar t0, const State& x0
     // until max_steps with a clock that does not advance.
     const Scalar hmin = opt_.smallest_step(t_);
     if (exact_) {
+      if (ladder_waits_ && mode_steps_ >= flow_.dim()) {  // the mode lasts: its ladder pays
+        ladder_waits_ = false;
+        flow_.prepare(delta_, work_, true);
+      }
       Scalar hs = delta_;
       t1 = t_ + hs;
       if (!(t_end - t1 > Scalar(0.01) * hs)) {

@@ -395,16 +395,26 @@ class AugmentedFlow {
 
   // True when |B|^p = 0 for some p <= dim (entrywise |B|): then B^p w = 0 exactly for every w,
   // whatever the values, and the Taylor series of exp(B tau) w is a polynomial of degree < p.
+  // |B|^p (i, j) > 0 exactly when the graph of B's nonzeros (an edge j -> i per B(i, j) != 0) has
+  // a walk of length p from j to i, so |B|^p = 0 for some p <= dim exactly when that graph has
+  // no cycle (a diagonal entry is one): Kahn's topological sort, O(dim^2).
   bool structurally_nilpotent() {
     const Eigen::Index d = bal_.rows();
-    nil_abs_ = bal_.cwiseAbs();  // own scratch: same sizes after warm-up, no allocation
-    nil_pow_ = nil_abs_;
-    for (Eigen::Index p = 1; p <= d; ++p) {
-      if ((nil_pow_.array() == Scalar(0)).all()) return true;
-      nil_next_.noalias() = nil_abs_ * nil_pow_;
-      nil_pow_.swap(nil_next_);
+    nil_indegree_.setZero(d);  // own scratch: same sizes after warm-up, no allocation
+    nil_ready_.resize(d);
+    for (Eigen::Index j = 0; j < d; ++j)
+      for (Eigen::Index i = 0; i < d; ++i)
+        if (bal_(i, j) != Scalar(0)) ++nil_indegree_[i];
+    Eigen::Index top = 0, removed = 0;
+    for (Eigen::Index i = 0; i < d; ++i)
+      if (nil_indegree_[i] == 0) nil_ready_[top++] = i;
+    while (top > 0) {
+      const Eigen::Index j = nil_ready_[--top];
+      ++removed;
+      for (Eigen::Index i = 0; i < d; ++i)
+        if (bal_(i, j) != Scalar(0) && --nil_indegree_[i] == 0) nil_ready_[top++] = i;
     }
-    return false;
+    return removed == d;
   }
 
   // B = D^-1 Â D with D = diag(scale_), powers of 2, chosen so that each component's row and
@@ -436,7 +446,8 @@ class AugmentedFlow {
   std::size_t cache_size_ = 8, next_slot_ = 0;
   int slot_ = -1;
   bool last_restored_ = false;
-  Matrix a_, bal_, build_, big_, big_exp_, nil_abs_, nil_pow_, nil_next_;
+  Matrix a_, bal_, build_, big_, big_exp_;
+  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1> nil_indegree_, nil_ready_;
   PadeExponential<Scalar> pade_, big_pade_;  // the exponentials of Â (dim) and of Van Loan's blocks (2 dim)
   Vector scale_, big_scale_;
   std::vector<Matrix> ladder_;
