@@ -7,11 +7,13 @@
 //
 // Usage: grounded_slider [--points-out FILE.csv] [--json FILE.json] [--range lo:hi]
 //                        [--restarts n] [--gap g] [--settle periods] [--stall-points n]
-//                        [--integrator exponential|dopri5]
+//                        [--integrator exponential|dopri5] [--fixed-section]
 //   (range and gap in units of the free cantilever's first frequency; default range 0.8:2.2,
 //   4 restarts, gap 0.01, 200 periods of transient before each restart's Poincare sections, a
 //   segment stalls when 40 points advance the frequency by less than 1e-3 omega_1; the orbits'
-//   runs by the exact method on the slider's linear modes by default, or by Dormand-Prince)
+//   runs by the exact method on the slider's linear modes by default, or by Dormand-Prince;
+//   --fixed-section keeps the section at the end of the start's transient, t0 = 40 T, instead of
+//   t0 mod T: ContinuationOptions::wrap_section = false, the helix that stalls the corrector)
 // Writes the curve (frequency, tip amplitude, stability, stick fraction, segment) as CSV, a JSON
 // summary with the elapsed and CPU time and the segments, and prints one line per point.
 
@@ -100,6 +102,7 @@ int main(int argc, char** argv) try {
   double lo = 0.8, hi = 2.2, gap = 0.01;
   int restarts = 4, settle = 200, stall = 40;
   OrbitIntegrator integrator = OrbitIntegrator::Exponential;
+  bool wrap_section = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -114,6 +117,7 @@ int main(int argc, char** argv) try {
       else if (m == "dopri5") integrator = OrbitIntegrator::DormandPrince54;
       else throw std::invalid_argument("--integrator expects exponential or dopri5, got " + m);
     }
+    else if (a == "--fixed-section") wrap_section = false;
     else if (a == "--restarts") {
       const double r = number(next(), a);
       if (!(r >= 0 && r <= 1000 && r == std::floor(r))) throw std::invalid_argument("--restarts expects an integer in [0, 1000]");
@@ -142,7 +146,7 @@ int main(int argc, char** argv) try {
       if (!(lo > 0 && hi > lo)) throw std::invalid_argument("--range expects 0 < lo < hi, got " + r);
     } else if (a == "--help") {
       std::printf("grounded_slider [--points-out FILE.csv] [--json FILE.json] [--range lo:hi] [--restarts n] [--gap g] "
-                  "[--settle periods] [--stall-points n] [--integrator exponential|dopri5]\n");
+                  "[--settle periods] [--stall-points n] [--integrator exponential|dopri5] [--fixed-section]\n");
       return 0;
     } else {
       throw std::invalid_argument("unknown option " + a);
@@ -163,6 +167,9 @@ int main(int argc, char** argv) try {
   // (section_margin: the default 0.02 keeps the section t0 away from the slider's switches)
   co.max_corrector_distance = 2;
   co.chord_iterations = 4;
+  // The start's section t0 = 40 T is taken modulo T (the default): at a fixed t0 the orbit's state
+  // turns with the forcing phase w t0, 40 turns per unit of p, which the predictor cannot follow.
+  co.wrap_section = wrap_section;
   // A line per point: the branch's CPU so far and its estimate of what remains.
   co.progress = [w1](const ContinuationProgress& pr) {
     std::printf("grounded_slider: point %d at %.3f Hz (%.0f %% of the range), %.2f s CPU", pr.points,

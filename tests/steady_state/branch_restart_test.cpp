@@ -56,6 +56,10 @@ struct Scene {
     co.max_step = 0.05;
     co.max_points = 300;
     co.max_corrector_distance = 2;
+    // The section stays at the end of the start's transient, t0 = 40 T (not t0 mod T): there
+    // the branch stalls short of the range's end (near beta = 0.353), the stall the restarts
+    // are tested on.
+    co.wrap_section = false;
     ro.gap = 0.02;
     ro.max_restarts = 3;
     ro.settle_periods = 30;
@@ -183,6 +187,22 @@ TEST(SteadyStateBranchRestart, RestartCarriesTheBranchPastTheStall) {
     ++checked;
   }
   EXPECT_GE(checked, 1);
+}
+
+// A range narrower than the first step: the first corrected point lies beyond parameter_max, so
+// the segment is Completed with its start alone. It left by the far end (exit_parameter), not
+// back past its start: the whole is Completed, without restarts.
+TEST(SteadyStateBranchRestart, FirstStepPastTheEndOfANarrowRangeCompletesWithoutRestarts) {
+  Scene s;
+  s.co.wrap_section = true;  // from t0 mod T the first step advances beta by ~1e-3
+  s.co.parameter_max = Scene::kLo + 2e-4;
+  s.ro.gap = 1e-4;
+  const auto r = s.run();
+  EXPECT_EQ(r.status, stickslip::ContinuationStatus::Completed) << r.message;
+  ASSERT_EQ(r.segments.size(), 1u) << r.message;
+  EXPECT_EQ(r.restarts, 0);
+  EXPECT_EQ(r.segments[0].branch.points.size(), 1u);
+  EXPECT_GT(r.segments[0].exit_parameter, s.co.parameter_max);
 }
 
 TEST(SteadyStateBranchRestart, BadOptionsThrowNamingTheParameter) {

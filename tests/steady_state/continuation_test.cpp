@@ -77,7 +77,8 @@ double expect_receptance(const ForcedOscillator<2>& sys,
     w_max = std::max(w_max, w);
     const Eigen::Matrix2cd D = sys.K.cast<cd>() - w * w * Eigen::Matrix2cd::Identity() +
                                cd(0, w) * sys.C.cast<cd>();
-    const Eigen::Vector2cd Hf = D.partialPivLu().solve(sys.f.cast<cd>());
+    // q(t0) = Re(H f e^{i w t0}) at the orbit's own section t0 (0 unless the start was later).
+    const Eigen::Vector2cd Hf = D.partialPivLu().solve(sys.f.cast<cd>()) * std::exp(cd(0, w * pt.orbit.t0));
     // The orbit's error is (M - I)^-1 times the end-state error (the Newton tolerance 1e-9 and
     // the run error, rtol 1e-10 over ~100 steps: ~1e-9 of the scale), and |(M - I)^-1| <=
     // 1 / min_k |1 - mu_k| (~11 at resonance, where mu = exp(-zeta w T) is closest to 1):
@@ -255,6 +256,61 @@ TEST(SteadyStateContinuation, DuffingBranchWithChordIterationsPassesBothFoldsAsW
   const auto branch = cont.run(0, 0.0, Sys::State::Zero(), 0.9);
   ASSERT_TRUE(branch.completed()) << branch.message;
   expect_duffing_branch(branch.points);
+}
+
+// A start at the end of a transient, t0 = 200 T(0.5): at that fixed section the orbit's state
+// turns with the forcing phase w t0 (|dx0/dw| ~ |x| t0 = 2500 |x|), a helix of 200 turns per
+// unit of w T / (2 pi) that the secant predictor cannot follow: 30 points do not reach the first
+// resonance (each advances w by at most max_step / (|x| t0) ~ 4e-4). Reduced into the first
+// period (ContinuationOptions::wrap_section, the default), the branch passes the first resonance
+// (w = 1) and is the closed form's at each orbit's own t0, as from t0 = 0.
+TEST(SteadyStateContinuation, StartLateInTimeIsWrappedIntoThePeriodAndFollowsTheReceptance) {
+  using Sys = ForcedOscillator<2>;
+  const double w0 = 0.5, w1 = 1.3, t0 = 200 * (2 * kPi / w0);
+  Sys sys = two_dof_scene();
+  auto cont = frequency_continuation(sys, w0, w1, 1.0);
+  const auto branch = cont.run(0, t0, Sys::State::Zero(), w0);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  ASSERT_GE(branch.points.size(), 10u);
+  EXPECT_LT(branch.points.size(), 200u);
+  for (const auto& pt : branch.points) {
+    EXPECT_GE(pt.orbit.t0, 0.0);
+    EXPECT_LT(pt.orbit.t0, pt.orbit.period);
+  }
+  EXPECT_GT(expect_receptance(sys, branch.points), 1.2);
+
+  Sys fixed_sys = two_dof_scene();
+  stickslip::ContinuationOptions<double> co = frequency_options(w0, w1, 1.0);
+  co.max_points = 30;
+  co.wrap_section = false;
+  stickslip::Continuation<Sys> fixed(
+      fixed_sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
+  const auto helix = fixed.run(0, t0, Sys::State::Zero(), w0);
+  EXPECT_FALSE(helix.completed());
+  EXPECT_LT(helix.points.back().parameter, 0.6);  // not even near the first resonance
+}
+
+// A start within the first period is left where it is: the same points, bit for bit, with and
+// without wrap_section (a smooth system has no events, so the section never moves).
+TEST(SteadyStateContinuation, StartWithinThePeriodIsTheSameBranchWithOrWithoutWrapping) {
+  using Sys = ForcedOscillator<1>;
+  const double w0 = 0.9;
+  auto branch = [&](bool wrap) {
+    Sys sys = duffing_scene();
+    stickslip::ContinuationOptions<double> co = frequency_options(w0, 1.15, 0.05);
+    co.wrap_section = wrap;
+    stickslip::Continuation<Sys> cont(
+        sys, [](Sys& s, double w) { s.omega = w; }, [](double w) { return 2 * kPi / w; }, {}, co);
+    return cont.run(0, 0.3 * (2 * kPi / w0), Sys::State::Zero(), w0);
+  };
+  const auto a = branch(true), b = branch(false);
+  ASSERT_TRUE(a.completed()) << a.message;
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) {
+    EXPECT_EQ(a.points[i].parameter, b.points[i].parameter);
+    EXPECT_EQ(a.points[i].orbit.t0, b.points[i].orbit.t0);
+    EXPECT_EQ(a.points[i].orbit.x0, b.points[i].orbit.x0);
+  }
 }
 
 // ---- SplitContinuation: one branch in parts on threads ------------------------------------------

@@ -105,6 +105,10 @@ struct BranchSegment {
   /// The relative recurrence r_k of the sections that gave k (PoincareSections; 0 for Start).
   Scalar recurrence = 0;
   ContinuationResult<System> branch;  ///< its points, status and message
+  /// When the branch is Completed: the parameter of the corrected point beyond the range that
+  /// ended it (not kept), which tells the end it left by (a first step may leave a narrow range
+  /// at once, past either end).
+  Scalar exit_parameter = 0;
   double cpu_seconds = 0;  ///< CPU seconds of the segment (the settling and sections included)
 };
 
@@ -224,9 +228,7 @@ bool RestartingContinuation<System>::stalled(const BranchSegment<System>& seg, S
   if (b.status == ContinuationStatus::StepTooSmall || b.status == ContinuationStatus::Stopped) return true;
   // Completed through the segment's own start bound: the branch turned back at a fold.
   if (b.status != ContinuationStatus::Completed || b.points.empty()) return false;
-  const Scalar dir = Scalar(opt_.direction), end = dir > 0 ? opt_.parameter_max : opt_.parameter_min;
-  using std::abs;
-  return abs(b.points.back().parameter - p_start) < abs(b.points.back().parameter - end);
+  return Scalar(opt_.direction) * (seg.exit_parameter - p_start) < 0;
 }
 
 template <class System>
@@ -267,20 +269,22 @@ void RestartingContinuation<System>::segment(BranchSegment<System>& seg, const M
   });
   const int n = restart_.stall_points;
   std::string crawl;
-  if (n > 0)
-    cont.stop_when([&](const ContinuationPoint<System>&, const ContinuationPoint<System>& next) {
-      if (params.size() + 1 < static_cast<std::size_t>(n)) return false;
-      using std::abs;
-      const Scalar advance = abs(next.parameter - params[params.size() + 1 - static_cast<std::size_t>(n)]);
-      if (advance >= restart_.stall_progress) return false;
-      crawl = "the branch crawled: its last " + std::to_string(n) + " points advanced the parameter by " +
-              detail::format_value(advance) + " < restart.stall_progress after p = " +
-              detail::format_value(params.back());
-      return true;
-    });
+  Scalar exit = p0;  // the last corrected point: beyond the range when the branch Completed
+  cont.stop_when([&](const ContinuationPoint<System>&, const ContinuationPoint<System>& next) {
+    exit = next.parameter;
+    if (n <= 0 || params.size() + 1 < static_cast<std::size_t>(n)) return false;
+    using std::abs;
+    const Scalar advance = abs(next.parameter - params[params.size() + 1 - static_cast<std::size_t>(n)]);
+    if (advance >= restart_.stall_progress) return false;
+    crawl = "the branch crawled: its last " + std::to_string(n) + " points advanced the parameter by " +
+            detail::format_value(advance) + " < restart.stall_progress after p = " +
+            detail::format_value(params.back());
+    return true;
+  });
   const double c0 = detail::thread_cpu_seconds();
   seg.start_parameter = p0;
   seg.branch = cont.run(mode, t0, x0, p0);
+  seg.exit_parameter = exit;
   if (seg.branch.status == ContinuationStatus::Stopped) seg.branch.message = crawl;
   seg.cpu_seconds += detail::thread_cpu_seconds() - c0;
 }

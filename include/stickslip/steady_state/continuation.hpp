@@ -52,6 +52,17 @@ struct ContinuationOptions {
   /// responses need). 0: t0 fixed along the branch (a branch followed into a family of orbits,
   /// e.g. a damper stuck all period, takes a different corrector path on a moved section).
   Scalar section_margin = Scalar(0.02);
+  /// true: the section t0 is kept within the first period, t0 in [0, T(p)): the start's t0 is
+  /// reduced modulo T(p0) (the orbit through (t0 - k T, x0) is the one through (t0, x0): the
+  /// system is T-periodic in t), and a section moved past T(p) by section_margin is moved back
+  /// by whole periods. The state at t0 of an orbit forced at omega = 2 pi / T turns with the
+  /// forcing phase omega t0: at a fixed t0 along a frequency branch, |dx0/d omega| ~ |x| t0, so a
+  /// start at the end of a transient of n periods (t0 = n T) winds the branch into a helix of
+  /// n turns per unit of omega T / (2 pi): the secant predictor misses it (the corrector fails,
+  /// the steps stay tiny and the parameter crawls). Kept within a period, the turning adds at most
+  /// 2 pi |x| per unit of omega / omega to the slope of the branch. false: t0 as given, moved only
+  /// by section_margin (a system whose time dependence is not T(p)-periodic).
+  bool wrap_section = true;
   /// > 0: the corrector first makes up to this many chord iterations: plain orbit runs (no
   /// monodromy, no dG/dp) solved with the last accepted point's [M - I, dG/dp] and the current
   /// tangent, while the residual at least halves per run; Newton's own iterations (a
@@ -163,7 +174,9 @@ struct ContinuationResult {
 /// max_step), one that needs more than half the allowed iterations halves it, a failure halves it
 /// and retries (down to min_step); with max_corrector_distance > 0 a corrected point farther from
 /// its prediction than that many ds is a failure too. The arclength norm is Euclidean in (x_P, p): scale the
-/// parameter (or the states) so that both are of order one. t0 is kept along the branch while
+/// parameter (or the states) so that both are of order one. t0 is taken within the first
+/// period (options.wrap_section: a section at t0 = n T turns the orbit's state with the forcing
+/// phase, n turns per unit of omega T / (2 pi)), kept along the branch while
 /// no event of the orbit comes within options.section_margin of a period of it, else moved
 /// away from the events (see the option); the start mode is kept too, unless a start_mode()
 /// rule re-decides it from each iterate (needed when a switch of the orbit crosses t0 along the
@@ -264,6 +277,12 @@ class Continuation {
   // events lies within section_margin T of t0 (mod T); 0 when none does, or when no interval
   // is longer than twice the margin.
   Scalar section_shift(const PeriodicOrbit<System>& orbit, Scalar T) const;
+  // t reduced into [0, T) by whole periods (ContinuationOptions::wrap_section).
+  static Scalar within_period(Scalar t, Scalar T) {
+    using std::floor;
+    const Scalar r = t - floor(t / T) * T;
+    return r >= 0 && r < T ? r : Scalar(0);
+  }
   // Runs (mode, t0, x) at parameter p for `delta`; false when the run fails.
   bool advance(Mode& mode, Scalar t0, State& x, Scalar p, Scalar delta) {
     set_(sys_, p);
@@ -491,6 +510,8 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
   set_(sys_, p0);
   const Scalar T0 = period_(p0);
   detail::require_positive(where, "period(p0)", T0);
+  detail::require_finite(where, "t0", t0);
+  if (opt_.wrap_section) t0 = within_period(t0, T0);
   Mode mode = mode0;
   PeriodicOrbit<System> orbit = shooting_.forced(mode, t0, x0_guess, T0);
   if (!orbit.ok()) {
@@ -603,8 +624,17 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
     if (shift > 0) {  // both points to the section t0 + shift (kept at t0 if a run fails)
       Mode ma = mode, mb = mode_new;
       State xa = x, xb = x_new;
-      if (advance(ma, t0, xa, p, shift) && advance(mb, t0, xb, p_new, shift)) {
-        t0 += shift;
+      // With wrap_section, the section t0 + shift - m T(p_new) in [0, T(p_new)): the new point
+      // is there after `shift` (its period is T(p_new)), the last one after shift + m (T(p) -
+      // T(p_new)) (its period is T(p)), so that the secant joins the two orbits at one section.
+      const Scalar T_new = period_(p_new), t_shifted = t0 + shift;
+      const Scalar t_wrapped = opt_.wrap_section ? within_period(t_shifted, T_new) : t_shifted;
+      const Scalar m = std::round((t_shifted - t_wrapped) / T_new);
+      Scalar shift_a = shift + m * (period_(p) - T_new);
+      const bool wrap = m > 0 && shift_a > 0;
+      if (!wrap) shift_a = shift;
+      if (advance(ma, t0, xa, p, shift_a) && advance(mb, t0, xb, p_new, shift)) {
+        t0 = wrap ? t_wrapped : t_shifted;
         x_new = xb;
         mode_new = mb;
         y_last = pack(xa, p);
