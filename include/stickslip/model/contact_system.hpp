@@ -368,7 +368,6 @@ class ContactSystem {
   mutable Matrix C_;                      // 2D x 2D, the constrained block in its top-left corner
   mutable Vector b_, lambda_;
   mutable Eigen::FullPivLU<Matrix> lu_;   // the impulses' padded C_
-  Matrix Gt_;                             // m x D: G_ transposed at assembly (constant where fixed_row_)
   std::vector<char> fixed_row_;           // contact i's sliding row is constant (side a on the structure, b fixed)
   /// Factorisations of C for sets of stuck contacts with constant rows, keyed by the set.
   static constexpr Index capacitance_slots = 8;

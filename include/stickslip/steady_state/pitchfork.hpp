@@ -42,6 +42,7 @@
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <functional>
@@ -285,6 +286,15 @@ class SymmetricBranches {
   }
   SymmetryBreakingPoint<System> classify_half(const ContinuationPoint<System>& a,
                                               const ContinuationPoint<System>& b) const;
+  // What classify and classify_half share: the kind from the sign changes of gm (pitchfork) and
+  // gp (fold) between a and b (none: a message of none_m, gm, none_p, gp), p interpolated, and
+  // the crossing multiplier with its vector from the nearer point that has one
+  // (crossing(k, kind, &v): point k, 0 for a and 1 for b; NaN when none).
+  template <class Crossing>
+  SymmetryBreakingPoint<System> classified(const ContinuationPoint<System>& a, const ContinuationPoint<System>& b,
+                                           std::array<Scalar, 2> gm, std::array<Scalar, 2> gp,
+                                           const std::string& none_m, const std::string& none_p,
+                                           Crossing&& crossing) const;
   SymmetryBreakingPoint<System> locate_half(SymmetryBreakingPoint<System> c, const ContinuationPoint<System>& a,
                                             const ContinuationPoint<System>& b, Scalar tolerance);
   // det(B - I) of M restricted to the subspace with orthonormal basis Q (1 for an empty one):
@@ -335,37 +345,12 @@ SymmetryBreakingPoint<System> SymmetricBranches<System>::classify(const Continua
     }
   const Matrix Qm = basis(n, -1), Qp = basis(n, 1);
   const Matrix &Ma = a.orbit.monodromy, &Mb = b.orbit.monodromy;
-  const Scalar am = det_minus_one(Ma, Qm), bm = det_minus_one(Mb, Qm);
-  const Scalar ap = det_minus_one(Ma, Qp), bp = det_minus_one(Mb, Qp);
-  Scalar ga = 0, gb = 0;
-  if (am * bm <= 0) {
-    c.kind = BifurcationKind::Pitchfork;
-    ga = am;
-    gb = bm;
-  } else if (ap * bp <= 0) {
-    c.kind = BifurcationKind::Fold;
-    ga = ap;
-    gb = bp;
-  } else {
-    c.message = "no real multiplier crosses +1 between the points (det(M - I) on the antisymmetric block " +
-                detail::format_value(am) + ", " + detail::format_value(bm) + "; on the symmetric block " +
-                detail::format_value(ap) + ", " + detail::format_value(bp) + ")";
-    return c;
-  }
-  c.ok = true;
-  c.parameter = ga != gb ? a.parameter + (b.parameter - a.parameter) * ga / (ga - gb) : (a.parameter + b.parameter) / 2;
-  // The orbit nearer the crossing (the smaller |det|) that has a real multiplier in the block.
-  const Matrix& Q = c.kind == BifurcationKind::Pitchfork ? Qm : Qp;
-  const bool a_nearer = std::abs(ga) <= std::abs(gb);
-  const auto* near = a_nearer ? &a : &b;
-  c.multiplier = nearest_plus_one(near->orbit.monodromy, Q, &c.eigenvector);
-  if (!detail::is_finite(c.multiplier)) {
-    near = a_nearer ? &b : &a;
-    c.multiplier = nearest_plus_one(near->orbit.monodromy, Q, &c.eigenvector);
-  }
-  c.orbit = near->orbit;
-  c.tangent = detail::branch_secant(a, b, shooting_);
-  return c;
+  return classified(a, b, {det_minus_one(Ma, Qm), det_minus_one(Mb, Qm)}, {det_minus_one(Ma, Qp), det_minus_one(Mb, Qp)},
+                    "no real multiplier crosses +1 between the points (det(M - I) on the antisymmetric block ",
+                    "; on the symmetric block ", [&](int k, BifurcationKind kind, Vector* v) {
+                      return nearest_plus_one((k == 0 ? a : b).orbit.monodromy,
+                                              kind == BifurcationKind::Pitchfork ? Qm : Qp, v);
+                    });
 }
 
 template <class System>
@@ -491,5 +476,5 @@ ContinuationPoint<System> SymmetricBranches<System>::image(const ContinuationPoi
 
 }  // namespace stickslip
 
-// classify_half and locate_half (the half-period shift).
+// classified, classify_half and locate_half.
 #include <stickslip/steady_state/detail/pitchfork_half_period.hpp>

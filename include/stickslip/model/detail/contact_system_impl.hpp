@@ -102,7 +102,6 @@ ContactSystem<Scalar_, Contact_>::ContactSystem(const FrameModel<Scalar>& frame,
   b_.setZero(2 * D_);
   lambda_.setZero(2 * D_);
   lu_ = Eigen::FullPivLU<Matrix>(2 * D_, 2 * D_);
-  Gt_ = G_.transpose();
   fixed_row_.assign(contacts_.size(), 0);
   for (std::size_t i = 0; i < contacts_.size(); ++i)
     fixed_row_[i] = static_cast<char>(body_of_[i] < 0 && moving_of_[i] < 0);

@@ -124,7 +124,7 @@ void ContactSystem<Scalar_, Contact_>::solve(const Mode& mode, Scalar t, const S
     e.f[i] = detail::with_law(machines_[iu], [&](const auto& m) {
       return m.friction_force(s, e.v[i], e.N[i], Scalar(0));
     });
-    if (fixed_row_[iu]) r_.head(n_) += e.f[i] * Gt_.col(i).head(n_);  // a fixed row lies on the modes
+    if (fixed_row_[iu]) r_.head(n_) += e.f[i] * G_.row(i).head(n_).transpose();  // a fixed row lies on the modes
     else add_row(G_.row(i), body_of_[iu], e.f[i], r_);
   }
   e.qdd = minv_.cwiseProduct(r_);
@@ -189,7 +189,7 @@ template <class Scalar_, class Contact_>
 bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
   // C lambda = -(rows M^-1 r + rows' z'), C = rows M^-1 cols^T, with e_.qdd = M^-1 r on entry.
   // Where every unknown is the friction force of a stuck contact with a constant row (side a on
-  // the structure, side b fixed: G_ row i = Gt_ column i for all time), C depends on the set of
+  // the structure, side b fixed: G_ row i is the same for all time and zero past the modes), C depends on the set of
   // unknowns only, and its factorisation comes from the cache keyed by the set.
   Evaluation& e = e_;
   const Index U = static_cast<Index>(unknown_.size());
@@ -207,9 +207,9 @@ bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
       detail::CapacitanceFactor<Scalar>& f = capacitance_cache_.insert(key);
       auto C = f.block(U);
       for (Index a = 0; a < U; ++a) {
-        const auto ga = Gt_.col(unknown_[static_cast<std::size_t>(a)]);
-        for (Index c = a; c < U; ++c)  // symmetric: cols = rows
-          C(a, c) = C(c, a) = ga.dot(Gt_.col(unknown_[static_cast<std::size_t>(c)]).cwiseProduct(minv_));
+        const auto ga = G_.row(unknown_[static_cast<std::size_t>(a)]).head(n_);
+        for (Index c = a; c < U; ++c)  // symmetric: cols = rows; M^-1 = I on the modes
+          C(a, c) = C(c, a) = ga.dot(G_.row(unknown_[static_cast<std::size_t>(c)]).head(n_));
       }
       f.factor(2 * D_);
       lu = &f;
@@ -217,12 +217,12 @@ bool ContactSystem<Scalar_, Contact_>::constrained_solve() const {
     if (!lu->regular()) return false;
     for (Index a = 0; a < U; ++a) {  // a fixed row lies on the modes, where M^-1 = I
       const Index i = unknown_[static_cast<std::size_t>(a)];
-      lambda_[a] = -(Gt_.col(i).head(n_).dot(e.qdd.head(n_)) + gdot_[i]);
+      lambda_[a] = -(G_.row(i).head(n_).dot(e.qdd.head(n_).transpose()) + gdot_[i]);
     }
     lu->solve(lambda_);
     for (Index a = 0; a < U; ++a) {
       const Index i = unknown_[static_cast<std::size_t>(a)];
-      e.qdd.head(n_) += lambda_[a] * Gt_.col(i).head(n_);
+      e.qdd.head(n_) += lambda_[a] * G_.row(i).head(n_).transpose();
       e.f[i] = lambda_[a];
     }
     return true;

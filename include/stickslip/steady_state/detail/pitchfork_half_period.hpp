@@ -1,14 +1,52 @@
 #pragma once
 /// \file pitchfork_half_period.hpp
-/// \brief SymmetricBranches under a symmetry with a half-period shift: the classification by
-/// the half-period map's eigenvalues (-1: pitchfork, +1: fold) and the pitchfork located by a
-/// secant on det(H + I).
+/// \brief SymmetricBranches' classification (the part shared with and without a half-period
+/// shift), and under a half-period shift: the classification by the half-period map's
+/// eigenvalues (-1: pitchfork, +1: fold) and the pitchfork located by a secant on det(H + I).
 
 #include <stickslip/steady_state/pitchfork.hpp>
 
+#include <array>
 #include <deque>
+#include <string>
 
 namespace stickslip {
+
+template <class System>
+template <class Crossing>
+SymmetryBreakingPoint<System> SymmetricBranches<System>::classified(const ContinuationPoint<System>& a,
+                                                                    const ContinuationPoint<System>& b,
+                                                                    std::array<Scalar, 2> gm, std::array<Scalar, 2> gp,
+                                                                    const std::string& none_m,
+                                                                    const std::string& none_p,
+                                                                    Crossing&& crossing) const {
+  SymmetryBreakingPoint<System> c;
+  std::array<Scalar, 2> g{};
+  if (gm[0] * gm[1] <= 0) {
+    c.kind = BifurcationKind::Pitchfork;
+    g = gm;
+  } else if (gp[0] * gp[1] <= 0) {
+    c.kind = BifurcationKind::Fold;
+    g = gp;
+  } else {
+    c.message = none_m + detail::format_value(gm[0]) + ", " + detail::format_value(gm[1]) + none_p +
+                detail::format_value(gp[0]) + ", " + detail::format_value(gp[1]) + ")";
+    return c;
+  }
+  c.ok = true;
+  c.parameter = g[0] != g[1] ? a.parameter + (b.parameter - a.parameter) * g[0] / (g[0] - g[1])
+                             : (a.parameter + b.parameter) / 2;
+  // The orbit nearer the crossing (the smaller |g|) that has a real multiplier there.
+  int k = std::abs(g[0]) <= std::abs(g[1]) ? 0 : 1;
+  c.multiplier = crossing(k, c.kind, &c.eigenvector);
+  if (!detail::is_finite(c.multiplier)) {
+    k = 1 - k;
+    c.multiplier = crossing(k, c.kind, &c.eigenvector);
+  }
+  c.orbit = (k == 0 ? a : b).orbit;
+  c.tangent = detail::branch_secant(a, b, shooting_);
+  return c;
+}
 
 template <class System>
 SymmetryBreakingPoint<System> SymmetricBranches<System>::classify_half(const ContinuationPoint<System>& a,
@@ -31,38 +69,15 @@ SymmetryBreakingPoint<System> SymmetricBranches<System>::classify_half(const Con
       return c;
     }
   }
-  const Scalar am = detail::det_shifted(h[0].H, Scalar(-1)), bm = detail::det_shifted(h[1].H, Scalar(-1));
-  const Scalar ap = detail::det_shifted(h[0].H, Scalar(1)), bp = detail::det_shifted(h[1].H, Scalar(1));
-  Scalar ga = 0, gb = 0, target = 0;
-  if (am * bm <= 0) {
-    c.kind = BifurcationKind::Pitchfork;
-    ga = am;
-    gb = bm;
-    target = -1;
-  } else if (ap * bp <= 0) {
-    c.kind = BifurcationKind::Fold;
-    ga = ap;
-    gb = bp;
-    target = 1;
-  } else {
-    c.message = "no real eigenvalue of the half-period map crosses -1 or +1 between the points (det(H + I) " +
-                detail::format_value(am) + ", " + detail::format_value(bm) + "; det(H - I) " +
-                detail::format_value(ap) + ", " + detail::format_value(bp) + ")";
-    return c;
-  }
-  c.ok = true;
-  c.parameter = ga != gb ? a.parameter + (b.parameter - a.parameter) * ga / (ga - gb) : (a.parameter + b.parameter) / 2;
-  int k = std::abs(ga) <= std::abs(gb) ? 0 : 1;
-  const Scalar tol = shooting_.multiplier_tolerance;
-  Scalar eig = detail::nearest_real_eigenvalue(h[k].H, target, tol, &c.eigenvector);
-  if (!detail::is_finite(eig)) {
-    k = 1 - k;
-    eig = detail::nearest_real_eigenvalue(h[k].H, target, tol, &c.eigenvector);
-  }
-  c.multiplier = eig * eig;  // M = H^2
-  c.orbit = pts[k]->orbit;
-  c.tangent = detail::branch_secant(a, b, shooting_);
-  return c;
+  return classified(
+      a, b, {detail::det_shifted(h[0].H, Scalar(-1)), detail::det_shifted(h[1].H, Scalar(-1))},
+      {detail::det_shifted(h[0].H, Scalar(1)), detail::det_shifted(h[1].H, Scalar(1))},
+      "no real eigenvalue of the half-period map crosses -1 or +1 between the points (det(H + I) ", "; det(H - I) ",
+      [&](int k, BifurcationKind kind, Vector* v) {
+        const Scalar eig = detail::nearest_real_eigenvalue(h[k].H, Scalar(kind == BifurcationKind::Pitchfork ? -1 : 1),
+                                                           shooting_.multiplier_tolerance, v);
+        return eig * eig;  // M = H^2 (NaN stays NaN)
+      });
 }
 
 template <class System>
