@@ -9,6 +9,7 @@
 #include "stickslip/steady_state/contact_statistics.hpp"
 #include "stickslip/steady_state/continuation.hpp"
 #include "stickslip/steady_state/floquet.hpp"
+#include "stickslip/steady_state/half_period_symmetry.hpp"
 #include "stickslip/steady_state/orbit_probe.hpp"
 #include "stickslip/steady_state/orbit_signal.hpp"
 #include "stickslip/steady_state/peak_response.hpp"

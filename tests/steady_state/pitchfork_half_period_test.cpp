@@ -9,17 +9,22 @@
 #include <stickslip/contact.hpp>
 #include <stickslip/ode.hpp>
 #include <stickslip/steady_state/continuation.hpp>
+#include <stickslip/steady_state/half_period_symmetry.hpp>
+#include <stickslip/steady_state/period_run.hpp>
+#include <stickslip/steady_state/shooting.hpp>
 #include <stickslip/steady_state/pitchfork.hpp>
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <cmath>
 #include <complex>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace steady_state_pitchfork_half_period_test {  // named: the steady-state tests share one unity TU
@@ -83,10 +88,10 @@ Y rk4(G&& g, double t0, double t1, Y y, int n) {
   return y;
 }
 
-// det(Phi_s(T/2) + I) of the Hill equation on the closed-form symmetric orbit: zero where the
-// half-period map's eigenvalue on the s-block is -1. The a-block's eigenvalues,
-// -exp(lambda T/2) with Re lambda = -c/2, stay off +-1.
-double hill_det(const AntiphasePair& sys, double w) {
+// Phi_s(T/2), the Hill equation's fundamental matrix in (s, s') over half a period on the
+// closed-form symmetric orbit (its coefficient a^2 has period T/2): the s-block of the
+// half-period map (the swap leaves s alone).
+Eigen::Matrix2d hill_half_map(const AntiphasePair& sys, double w) {
   const std::complex<double> F = sys.amplitude(w);
   const auto g = [&](double t, const Eigen::Vector4d& y) {
     const double a = (F * std::exp(std::complex<double>(0, w * t))).real();
@@ -98,7 +103,14 @@ double hill_det(const AntiphasePair& sys, double w) {
   const Eigen::Vector4d y = rk4(g, 0.0, kPi / w, Eigen::Vector4d(1, 0, 0, 1), 4000);
   Eigen::Matrix2d Phi;
   Phi << y[0], y[2], y[1], y[3];
-  return (Phi + Eigen::Matrix2d::Identity()).determinant();
+  return Phi;
+}
+
+// det(Phi_s(T/2) + I) of the Hill equation on the closed-form symmetric orbit: zero where the
+// half-period map's eigenvalue on the s-block is -1. The a-block's eigenvalues,
+// -exp(lambda T/2) with Re lambda = -c/2, stay off +-1.
+double hill_det(const AntiphasePair& sys, double w) {
+  return (hill_half_map(sys, w) + Eigen::Matrix2d::Identity()).determinant();
 }
 
 // The tongue's edges: the sign changes of hill_det on a grid, refined by bisection.
@@ -130,23 +142,53 @@ std::vector<double> hill_edges(const AntiphasePair& sys, double lo, double hi) {
 const auto set_w = [](AntiphasePair& s, double w) { s.omega = w; };
 const auto period_of = [](double w) { return 2 * kPi / w; };
 
-TEST(SteadyStatePitchforkHalfPeriod, AntiphasePairBreaksSymmetryAtTheHillEquationsEdgesAndItsAsymmetricOrbitsAreTheTransients) {
-  AntiphasePair sys;
-  const std::vector<double> edges = hill_edges(sys, 0.95, 1.15);
-  ASSERT_EQ(edges.size(), 2u) << "the Hill equation's principal tongue lies inside [0.95, 1.15]";
-  std::printf("Hill equation's tongue: w = %.10f .. %.10f\n", edges[0], edges[1]);
+stickslip::HalfPeriodSymmetry<AntiphasePair> swap_in_antiphase() {
+  stickslip::HalfPeriodSymmetry<AntiphasePair> sym;
+  sym.S = swap_masses();
+  return sym;
+}
 
-  stickslip::ShootingOptions<double> so;
+// Continuation across the tongue, w in [0.95, 1.15].
+stickslip::ContinuationOptions<double> across_the_tongue() {
   stickslip::ContinuationOptions<double> co;
   co.parameter_min = 0.95;
   co.parameter_max = 1.15;
   co.initial_step = 0.01;
   co.max_step = 0.02;
   co.max_points = 200;
+  return co;
+}
+
+// SymmetricBranches under the swap with a half-period shift, its asymmetric branches started at
+// step 0.002 (up to max_step, max_points points).
+stickslip::SymmetricBranches<AntiphasePair> half_shifted_branches(AntiphasePair& sys, double max_step, int max_points) {
+  stickslip::ContinuationOptions<double> ca = across_the_tongue();
+  ca.initial_step = 0.002;
+  ca.max_step = max_step;
+  ca.max_points = max_points;
+  stickslip::SymmetricBranches<AntiphasePair> sa(sys, set_w, period_of, swap_masses(), {}, ca);
+  sa.half_period_shift(true);
+  return sa;
+}
+
+// The symmetric branch from w = 0.96 up, shot on the full period or (half) on the half period.
+stickslip::ContinuationResult<AntiphasePair> symmetric_branch(AntiphasePair& sys, bool half) {
   const double w0 = 0.96;
   sys.omega = w0;
-  stickslip::Continuation<AntiphasePair> cont(sys, set_w, period_of, so, co);
-  const auto branch = cont.run(0, 0.0, sys.symmetric_start(w0), w0);
+  stickslip::Continuation<AntiphasePair> cont(sys, set_w, period_of, {}, across_the_tongue());
+  if (half) cont.half_period_symmetry(swap_in_antiphase());
+  return cont.run(0, 0.0, sys.symmetric_start(w0), w0);
+}
+
+TEST(SteadyStatePitchforkHalfPeriod, AntiphasePairBreaksSymmetryAtTheHillEquationsEdgesAndItsAsymmetricOrbitsAreTheTransients) {
+  AntiphasePair sys;
+  const std::vector<double> edges = hill_edges(sys, 0.95, 1.15);
+  ASSERT_EQ(edges.size(), 2u) << "the Hill equation's principal tongue lies inside [0.95, 1.15]";
+  std::printf("Hill equation's tongue: w = %.10f .. %.10f\n", edges[0], edges[1]);
+
+  const stickslip::ShootingOptions<double> so;
+  const stickslip::ContinuationOptions<double> co = across_the_tongue();
+  const auto branch = symmetric_branch(sys, false);
   ASSERT_TRUE(branch.completed()) << branch.message;
   stickslip::SymmetricBranches<AntiphasePair> sb(sys, set_w, period_of, swap_masses(), so, co);
   // Without the shift the symmetric orbits are not S-symmetric (a != 0): no classification.
@@ -200,12 +242,7 @@ TEST(SteadyStatePitchforkHalfPeriod, AntiphasePairBreaksSymmetryAtTheHillEquatio
   std::printf("located - Hill equation: %.2e, %.2e\n", found[0].parameter - edges[0], found[1].parameter - edges[1]);
 
   // The asymmetric branch from the lower edge into the tongue.
-  stickslip::ContinuationOptions<double> ca = co;
-  ca.initial_step = 0.002;
-  ca.max_step = 0.01;
-  ca.max_points = 60;
-  stickslip::SymmetricBranches<AntiphasePair> sa(sys, set_w, period_of, swap_masses(), so, ca);
-  sa.half_period_shift(true);
+  stickslip::SymmetricBranches<AntiphasePair> sa = half_shifted_branches(sys, 0.01, 60);
   const auto asym = sa.asymmetric_branch(found[0], 0.02);
   std::printf("asymmetric branch: %zu points, %s\n", asym.points.size(), stickslip::to_string(asym.status));
   ASSERT_GE(asym.points.size(), 10u) << stickslip::to_string(asym.status) << ": " << asym.message;
@@ -254,6 +291,183 @@ TEST(SteadyStatePitchforkHalfPeriod, AntiphasePairBreaksSymmetryAtTheHillEquatio
   ASSERT_TRUE(im.orbit.ok()) << im.orbit.message;
   EXPECT_NEAR((im.orbit.x0[0] + im.orbit.x0[1]) / 2, -s0, 1e-7);
   EXPECT_NEAR((im.orbit.x0[0] - im.orbit.x0[1]) / 2, (mid->orbit.x0[0] - mid->orbit.x0[1]) / 2, 1e-7);
+}
+
+// max |c + S (x(t0 + T/2) - c) - x0| and max |x(t0 + T) - x0| of runs of the library's
+// integrator from x0 (no Newton: the orbit's end conditions checked directly).
+std::pair<double, double> symmetry_and_period_defects(AntiphasePair& sys, double w, const AntiphasePair::State& x0) {
+  sys.omega = w;
+  const stickslip::ShootingOptions<double> so;
+  const double T = 2 * kPi / w;
+  const auto half = stickslip::run_period(sys, 0, 0.0, x0, T / 2, so, false);
+  const auto full = stickslip::run_period(sys, 0, 0.0, x0, T, so, false);
+  EXPECT_TRUE(half.ok() && full.ok());
+  return {(swap_masses() * half.x_end - x0).cwiseAbs().maxCoeff(), (full.x_end - x0).cwiseAbs().maxCoeff()};
+}
+
+TEST(SteadyStatePitchforkHalfPeriod, ShootingOnTheHalfPeriodConvergesToTheUnstableSymmetricOrbitWithTheHillEquationsMultipliers) {
+  AntiphasePair sys;
+  const std::vector<double> edges = hill_edges(sys, 0.95, 1.15);
+  ASSERT_EQ(edges.size(), 2u);
+  const double w = (edges[0] + edges[1]) / 2;  // inside the tongue: the symmetric orbit is unstable
+  sys.omega = w;
+  stickslip::Shooting<AntiphasePair> shooting(sys);
+  shooting.half_period_symmetry(swap_in_antiphase());
+  ASSERT_NE(shooting.half_period_symmetry(), nullptr);
+  AntiphasePair::State guess = sys.symmetric_start(w);
+  guess[0] += 0.05;  // s(0) = 0.05, s'(0) = -0.03: off the symmetric orbit
+  guess[1] += 0.05;
+  guess[2] -= 0.03;
+  guess[3] -= 0.03;
+  const auto orbit = shooting.forced(0, 0.0, guess, 2 * kPi / w);
+  ASSERT_TRUE(orbit.ok()) << orbit.message;
+  const AntiphasePair::State ref = sys.symmetric_start(w);
+  std::printf("half-period shooting at w = %.6f: %d runs, s0 = %.2e, s0' = %.2e, |a0 - closed form| = %.2e\n", w,
+              orbit.iterations, (orbit.x0[0] + orbit.x0[1]) / 2, (orbit.x0[2] + orbit.x0[3]) / 2,
+              std::abs((orbit.x0[0] - orbit.x0[1]) / 2 - ref[0]));
+  // 1e-8: Newton's tolerance is 1e-9 max(1, |x0|) on the residual; H - I is regular here
+  // (|1 / (h + 1)| of order 1), so the state's error is of the same order.
+  EXPECT_NEAR((orbit.x0[0] + orbit.x0[1]) / 2, 0, 1e-8);
+  EXPECT_NEAR((orbit.x0[2] + orbit.x0[3]) / 2, 0, 1e-8);
+  EXPECT_NEAR((orbit.x0[0] - orbit.x0[1]) / 2, ref[0], 1e-8);
+  EXPECT_NEAR((orbit.x0[2] - orbit.x0[3]) / 2, ref[2], 1e-8);
+  // The monodromy is the full period's: that of an independent full-period variational run
+  // (1e-7: two integrations at rtol 1e-10 of a map with entries of order 1..10).
+  ASSERT_EQ(orbit.half_period_map.rows(), 4);
+  const auto full = stickslip::run_period(sys, 0, 0.0, orbit.x0, 2 * kPi / w, shooting.options(), true);
+  ASSERT_TRUE(full.ok());
+  EXPECT_LT((orbit.monodromy - full.monodromy).cwiseAbs().maxCoeff(), 1e-7);
+  EXPECT_LT((orbit.monodromy - orbit.half_period_map * orbit.half_period_map).cwiseAbs().maxCoeff(), 1e-12);
+  // The multipliers: the s-block's are the squares of the Hill equation's half-period
+  // eigenvalues (test's RK4), the a-block's exp(lambda T) with lambda = -c/2 +- i sqrt(wa^2 - c^2/4)
+  // (closed form). 1e-7: the RK4 reference ~1e-12, the variational run ~1e-9 on entries ~10.
+  const Eigen::Vector2cd hs = Eigen::EigenSolver<Eigen::Matrix2d>(hill_half_map(sys, w)).eigenvalues();
+  const double T = 2 * kPi / w;
+  const std::complex<double> la(-sys.c / 2, std::sqrt(sys.wa * sys.wa - sys.c * sys.c / 4));
+  const std::complex<double> refs[4] = {hs[0] * hs[0], hs[1] * hs[1], std::exp(la * T), std::exp(std::conj(la) * T)};
+  ASSERT_EQ(orbit.floquet.multipliers.size(), 4);
+  for (const auto& r : refs) {
+    double nearest = 1e9;
+    for (Eigen::Index i = 0; i < 4; ++i) nearest = std::min(nearest, std::abs(orbit.floquet.multipliers[i] - r));
+    EXPECT_LT(nearest, 1e-7) << "reference multiplier " << r;
+  }
+  EXPECT_FALSE(orbit.floquet.stable);
+  std::printf("Hill half-period eigenvalues %.8f, %.8f; largest multiplier %.8f\n", hs[0].real(), hs[1].real(),
+              orbit.floquet.multipliers.cwiseAbs().maxCoeff());
+  shooting.clear_half_period_symmetry();
+  EXPECT_EQ(shooting.half_period_symmetry(), nullptr);
+}
+
+TEST(SteadyStatePitchforkHalfPeriod, ContinuationOnTheHalfPeriodStaysSymmetricAndFlagsThePitchforkAtTheHillEquationsEdge) {
+  AntiphasePair sys;
+  const std::vector<double> edges = hill_edges(sys, 0.95, 1.15);
+  ASSERT_EQ(edges.size(), 2u);
+  const stickslip::ShootingOptions<double> so;
+  const stickslip::ContinuationOptions<double> co = across_the_tongue();
+  const auto branch = symmetric_branch(sys, true);
+  ASSERT_TRUE(branch.completed()) << branch.message;
+  ASSERT_GE(branch.points.size(), 5u);
+  double worst_half = 0, worst_full = 0, worst_s = 0;
+  for (const auto& pt : branch.points) {
+    const auto d = symmetry_and_period_defects(sys, pt.parameter, pt.orbit.x0);
+    worst_half = std::max(worst_half, d.first);
+    worst_full = std::max(worst_full, d.second);
+    worst_s = std::max({worst_s, std::abs(pt.orbit.x0[0] + pt.orbit.x0[1]), std::abs(pt.orbit.x0[2] + pt.orbit.x0[3])});
+    ASSERT_EQ(pt.orbit.half_period_map.rows(), 4);
+  }
+  std::printf("symmetric branch: %zu points; max |S x(T/2) - x0| = %.2e, |x(T) - x0| = %.2e, |s| = %.2e\n",
+              branch.points.size(), worst_half, worst_full, worst_s);
+  // 1e-8: Newton's tolerance 1e-9 max(1, |x0|) (|x0| ~ 1..2) on the half-period condition; the
+  // full period's defect is (I + H) times it, |H| of order 1..3 (a multiplier up to ~2 inside the tongue).
+  EXPECT_LT(worst_half, 1e-8);
+  EXPECT_LT(worst_full, 1e-8);
+  EXPECT_LT(worst_s, 1e-8);
+  for (const auto& b : branch.bifurcations)
+    std::printf("flagged %s between w = %.6f and %.6f\n", stickslip::to_string(b.kind),
+                branch.points[b.before].parameter, branch.points[b.before + 1].parameter);
+  // Each edge is flagged as a pitchfork between two points that bracket it.
+  stickslip::SymmetricBranches<AntiphasePair> sb(sys, set_w, period_of, swap_masses(), so, co);
+  sb.half_period_shift(true);
+  for (const double edge : edges) {
+    const stickslip::BifurcationPoint<double>* hit = nullptr;
+    for (const auto& b : branch.bifurcations) {
+      const double pa = branch.points[b.before].parameter, pb = branch.points[b.before + 1].parameter;
+      if (std::min(pa, pb) <= edge && edge <= std::max(pa, pb)) hit = &b;
+    }
+    ASSERT_NE(hit, nullptr) << "no crossing flagged around the Hill equation's edge w = " << edge;
+    EXPECT_EQ(hit->kind, stickslip::BifurcationKind::Pitchfork);
+    const auto& pa = branch.points[hit->before];
+    const auto& pb = branch.points[hit->before + 1];
+    const auto c = sb.classify(pa, pb);
+    ASSERT_TRUE(c.ok) << c.message;
+    EXPECT_EQ(c.kind, stickslip::BifurcationKind::Pitchfork);
+    // Linear interpolation of det(H + I) between the points: inside their bracket.
+    EXPECT_LE(std::abs(c.parameter - edge), std::abs(pb.parameter - pa.parameter));
+    const auto l = sb.locate(pa, pb, 1e-7);
+    ASSERT_TRUE(l.ok) << l.message;
+    EXPECT_EQ(l.kind, stickslip::BifurcationKind::Pitchfork);
+    // 1e-7: as in the test above (locate's multiplier tolerance 1e-7, |dmu/dw| of order 10).
+    EXPECT_NEAR(l.parameter, edge, 1e-7);
+    std::printf("classified at w = %.8f, located at w = %.10f (Hill: %.10f)\n", c.parameter, l.parameter, edge);
+    if (edge != edges[0]) continue;
+    // The asymmetric branch born at the lower edge: its first points have s != 0.
+    const auto asym = half_shifted_branches(sys, 0.005, 4).asymmetric_branch(l, 0.02);
+    ASSERT_GE(asym.points.size(), 3u) << asym.message;
+    for (const auto& pt : asym.points) {
+      const double s0 = (pt.orbit.x0[0] + pt.orbit.x0[1]) / 2, sd0 = (pt.orbit.x0[2] + pt.orbit.x0[3]) / 2;
+      // 1e-3: the first orbit lies at arclength 0.02 from the pitchfork along the s-direction
+      // Floquet vector, and s grows further away from the edge (|s| ~ sqrt(w - edge)): far above
+      // the symmetric orbit's s (<= 1e-8).
+      EXPECT_GT(std::hypot(s0, sd0), 1e-3) << "w = " << pt.parameter;
+    }
+  }
+}
+
+TEST(SteadyStatePitchforkHalfPeriod, HalfPeriodSymmetryRejectsBadInputNamingTheParameter) {
+  AntiphasePair sys;
+  stickslip::Shooting<AntiphasePair> shooting(sys);
+  const auto message = [&](const stickslip::HalfPeriodSymmetry<AntiphasePair>& sym) {
+    shooting.half_period_symmetry(sym);
+    try {
+      shooting.forced(0, 0.0, sys.symmetric_start(1.0), 2 * kPi);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no throw");
+  };
+  auto sym = swap_in_antiphase();
+  sym.S = Eigen::MatrixXd::Identity(3, 3);
+  EXPECT_NE(message(sym).find("S must have the state size"), std::string::npos) << message(sym);
+  sym.S = 2 * Eigen::MatrixXd::Identity(4, 4);
+  EXPECT_NE(message(sym).find("S must be an involution"), std::string::npos) << message(sym);
+  sym.S = Eigen::MatrixXd::Identity(4, 3);
+  EXPECT_NE(message(sym).find("S must be a non-empty square matrix"), std::string::npos) << message(sym);
+  sym = swap_in_antiphase();
+  sym.centre[1] = std::nan("");
+  EXPECT_NE(message(sym).find("centre must be finite"), std::string::npos) << message(sym);
+  // A dynamic-size state: a centre of the wrong size.
+  struct DynamicTypes {
+    using Scalar = double;
+    using State = Eigen::VectorXd;
+    using Mode = int;
+  };
+  stickslip::HalfPeriodSymmetry<DynamicTypes> dyn;
+  dyn.S = swap_masses();
+  EXPECT_NO_THROW(dyn.validate("test", 4));
+  dyn.centre = Eigen::VectorXd::Zero(3);
+  try {
+    dyn.validate("test", 4);
+    ADD_FAILURE() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("centre must be empty or have the state size"), std::string::npos) << e.what();
+  }
+  // The autonomous problem with a half-period symmetry is not supported.
+  shooting.half_period_symmetry(swap_in_antiphase());
+  EXPECT_THROW(shooting.autonomous(0, sys.symmetric_start(1.0), 2 * kPi), std::invalid_argument);
+  // The affine map about a centre: c + S (x - c).
+  sym = swap_in_antiphase();
+  sym.centre = AntiphasePair::State(1, 3, 0, 0);
+  EXPECT_EQ(sym.mirror(AntiphasePair::State(2, 5, 7, 11)), AntiphasePair::State(1 + (5 - 3), 3 + (2 - 1), 11, 7));
 }
 
 }  // namespace

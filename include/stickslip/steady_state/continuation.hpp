@@ -216,6 +216,12 @@ class Continuation {
     opt_.validate("Continuation");
   }
 
+  /// Follow symmetric orbits shot on half the period (Shooting::half_period_symmetry): the
+  /// corrector solves c + S (x(t0 + T/2) - c) = x(t0) with H - I; the points' monodromy is H^2.
+  void half_period_symmetry(HalfPeriodSymmetry<System> symmetry) {
+    shooting_.half_period_symmetry(std::move(symmetry));
+  }
+
   /// Call `on_point(point)` after each accepted point.
   void on_point(OnPoint f) { on_point_ = std::move(f); }
 
@@ -254,7 +260,7 @@ class Continuation {
   // Orbit run at (x, p) with the monodromy.
   PeriodRun<System> shoot(const Mode& mode, Scalar t0, const State& x, Scalar p, bool monodromy) {
     set_(sys_, p);
-    return run_period(sys_, mode, t0, x, period_(p), shooting_.options(), monodromy);
+    return shooting_.run_orbit(mode, t0, x, period_(p), monodromy);
   }
   // The start mode for x at the current parameter (start_mode_, else `mode`).
   Mode mode_at(const Mode& mode, Scalar t0, const State& x) {
@@ -549,7 +555,7 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
     result.message = "start tangent: " + why;
     return result;
   }
-  if (!shooting_.newton_step(orbit.monodromy - Matrix::Identity(np, np), -gp, v)) {
+  if (!shooting_.newton_step(orbit.shooting_map() - Matrix::Identity(np, np), -gp, v)) {
     result.status = ContinuationStatus::StartFailed;
     result.message = "start tangent: M - I is singular at p0 and dG/dp is not in its range (a "
                      "multiplier 1: start off a fold)";
@@ -558,7 +564,7 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
   tau.head(np) = v;
   tau[np] = 1;
   tau *= Scalar(opt_.direction) / tau.norm();
-  chord_M_ = orbit.monodromy;
+  chord_M_ = orbit.shooting_map();
   chord_gp_ = gp;
   chord_valid_ = true;
 
@@ -619,7 +625,7 @@ auto Continuation<System>::follow(const Mode& mode0, Scalar t0, const State& x0_
       return result;
     }
     Vector y_last = pack(x, p);
-    chord_M_ = point.orbit.monodromy;
+    chord_M_ = point.orbit.shooting_map();
     chord_valid_ = true;
     if (shift > 0) {  // both points to the section t0 + shift (kept at t0 if a run fails)
       Mode ma = mode, mb = mode_new;

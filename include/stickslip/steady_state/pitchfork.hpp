@@ -34,6 +34,7 @@
 #include <stickslip/steady_state/continuation.hpp>
 #include <stickslip/steady_state/detail/branch_start.hpp>
 #include <stickslip/steady_state/detail/half_period_map.hpp>
+#include <stickslip/steady_state/half_period_symmetry.hpp>
 #include <stickslip/steady_state/shooting.hpp>
 
 #include <Eigen/Core>
@@ -112,13 +113,7 @@ class SymmetricBranches {
     if (!set_) throw std::invalid_argument(where + ": set_parameter must not be empty");
     if (!period_) throw std::invalid_argument(where + ": period must not be empty");
     opt_.validate(where);
-    if (S_.rows() == 0 || S_.rows() != S_.cols())
-      detail::throw_invalid(where, "symmetry must be a non-empty square matrix, rows", S_.rows());
-    if (!detail::all_finite(S_)) throw std::invalid_argument(where + ": symmetry must be finite");
-    const Scalar scale = std::max(Scalar(1), S_.cwiseAbs().maxCoeff() * S_.cwiseAbs().maxCoeff());
-    const Scalar defect = (S_ * S_ - Matrix::Identity(S_.rows(), S_.rows())).cwiseAbs().maxCoeff();
-    if (!(defect <= Scalar(1e-10) * scale))
-      detail::throw_invalid(where, "symmetry must be an involution (S S = I); max |S S - I|", defect);
+    detail::require_involution(where, "symmetry", S_);
   }
 
   /// The symmetry acts with a half-period shift (see the file's description): x(t) solves the

@@ -6,6 +6,7 @@
 #include <stickslip/detail/cpu_time.hpp>
 #include <stickslip/detail/validate.hpp>
 #include <stickslip/steady_state/floquet.hpp>
+#include <stickslip/steady_state/half_period_symmetry.hpp>
 #include <stickslip/steady_state/period_run.hpp>
 #include <stickslip/steady_state/shooting_options.hpp>
 #include <stickslip/steady_state/stall_diagnosis.hpp>
@@ -63,8 +64,12 @@ struct PeriodicOrbit {
   State x0;             ///< the orbit's state at t0
   Scalar residual = 0;  ///< max |x_i(T) - x_i(0)| over the periodic components
   int iterations = 0;   ///< orbit runs made (Newton iterations and backtracking trials)
-  /// dx_P(T)/dx_P(0) over the periodic components P (in the order of options.periodic).
+  /// dx_P(T)/dx_P(0) over the periodic components P (in the order of options.periodic); with a
+  /// half-period symmetry (Shooting::half_period_symmetry) the full period's M = H^2.
   Matrix monodromy;
+  /// With a half-period symmetry: H = (S dx(t0 + T/2)/dx(t0))_PP, the matrix of the symmetric
+  /// problem's Newton step (H - I); empty without one.
+  Matrix half_period_map;
   /// Multipliers of `monodromy`, stability and instability kind.
   FloquetMultipliers<Scalar> floquet;
   /// max |x_i| over the orbit for options.amplitude_components (from the run that closed it).
@@ -78,6 +83,9 @@ struct PeriodicOrbit {
   StepperStats stats;  ///< counters of the last orbit run
   /// status == ShootingStatus::Converged.
   bool ok() const noexcept { return status == ShootingStatus::Converged; }
+  /// The map whose fixed point the orbit is: half_period_map with a half-period symmetry, else
+  /// monodromy (Newton's and the continuation's matrix is this minus I).
+  const Matrix& shooting_map() const noexcept { return half_period_map.size() ? half_period_map : monodromy; }
 };
 
 /// Periodic orbits of a hybrid system by single shooting:
@@ -93,6 +101,8 @@ struct PeriodicOrbit {
 /// least-squares one: a family of orbits (a damper stuck all period) is crossed the least; the
 /// status is SingularJacobian when the residual is not in J's range. The start mode is kept: the orbit must return to it at
 /// t0 + T. Every outcome is in the orbit's status; caller errors throw std::invalid_argument.
+/// With a half-period symmetry (half_period_symmetry()) forced() solves the symmetric problem
+/// c + S (x(t0 + T/2) - c) = x(t0) instead, with the Jacobian H - I (run_orbit()).
 template <class System>
 class Shooting {
  public:
@@ -118,22 +128,55 @@ class Shooting {
   /// The system solved for.
   System& system() { return sys_; }
 
+  /// Shoot on half the period under `symmetry` (see HalfPeriodSymmetry): every orbit run
+  /// (run_orbit()) covers T/2 and ends mirrored, forced() finds the symmetric orbits, and their
+  /// monodromy is the full period's M = H^2. Validated per call against the state size.
+  void half_period_symmetry(HalfPeriodSymmetry<System> symmetry) {
+    sym_ = std::move(symmetry);
+    has_sym_ = true;
+  }
+  /// Shoot on the full period again.
+  void clear_half_period_symmetry() { has_sym_ = false; }
+  /// The half-period symmetry in use, nullptr when none.
+  const HalfPeriodSymmetry<System>* half_period_symmetry() const { return has_sym_ ? &sym_ : nullptr; }
+
+  /// One orbit run from (mode, t0, x0), with its sensitivity when `sensitivity`: run_period
+  /// over `period`; with a half-period symmetry over period / 2 with its end mirrored,
+  ///
+  ///     x_end <- c + S (x_end - c),  monodromy <- S dx(t0 + T/2)/dx(t0),  mode_end <- mode_image(mode_end),
+  ///
+  /// so that x_end = x0 and mode_end = mode hold on the symmetric orbits. Throws like run_period.
+  PeriodRun<System> run_orbit(const Mode& mode, Scalar t0, const State& x0, Scalar period, bool sensitivity) {
+    if (!has_sym_) return run_period(sys_, mode, t0, x0, period, opt_, sensitivity);
+    sym_.validate("Shooting::half_period_symmetry", x0.size());
+    PeriodRun<System> run = run_period(sys_, mode, t0, x0, period / 2, opt_, sensitivity);
+    if (!run.ok()) return run;
+    run.x_end = sym_.mirror(run.x_end);
+    if (run.monodromy.size()) run.monodromy = sym_.S * run.monodromy;
+    run.mode_end = sym_.mirror_mode(run.mode_end);
+    return run;
+  }
+
   /// The forced orbit of period `period` through (mode, t0) starting from the guess x0.
   /// Throws std::invalid_argument for empty/non-finite x0, non-finite t0, period <= 0 or
-  /// invalid options.
+  /// invalid options (or symmetry).
   Orbit forced(const Mode& mode, Scalar t0, const State& x0, Scalar period) {
     return solve(mode, t0, x0, period, false);
   }
 
   /// The autonomous orbit through (mode, x0 guess) with period guess `period` (t0 = 0).
-  /// Throws like forced().
+  /// Throws like forced(), and with a half-period symmetry set (not supported).
   Orbit autonomous(const Mode& mode, const State& x0, Scalar period) {
+    if (has_sym_)
+      throw std::invalid_argument("Shooting::autonomous: a half-period symmetry is not supported (clear it)");
     return solve(mode, Scalar(0), x0, period, true);
   }
 
-  /// The orbit data (monodromy block, multipliers, amplitudes, events) of a run that closes;
-  /// status Converged, or ModeNotPeriodic when the end mode differs from `mode`. Used by
-  /// Continuation.
+  /// The orbit data (monodromy block, multipliers, amplitudes, events) of a run of run_orbit()
+  /// that closes; status Converged, or ModeNotPeriodic when the end mode differs from `mode`.
+  /// With a half-period symmetry: half_period_map = H (the run's block), monodromy = H^2, and
+  /// amplitudes, outputs, events and stats from one more (plain) run of the full period.
+  /// Used by Continuation.
   Orbit make_orbit(const PeriodRun<System>& run, const Mode& mode, Scalar t0, const State& x0,
                    Scalar period, bool autonomous, Scalar residual, int iterations) const;
 
@@ -175,6 +218,8 @@ class Shooting {
 
   System& sys_;
   ShootingOptions<Scalar> opt_;
+  HalfPeriodSymmetry<System> sym_;
+  bool has_sym_ = false;
 };
 
 template <class System>
@@ -211,16 +256,32 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.residual = residual;
   o.iterations = iterations;
   o.monodromy = periodic_block(run.monodromy);
+  if (has_sym_) {
+    o.half_period_map = o.monodromy;
+    o.monodromy = o.half_period_map * o.half_period_map;
+  }
   if (!detail::all_finite(o.monodromy)) {
     o.status = ShootingStatus::IntegrationFailed;
     o.message = "the monodromy matrix of the closing run is not finite (its variational run blew up)";
     return o;
   }
   o.floquet = floquet_multipliers<Scalar>(o.monodromy, autonomous, opt_.multiplier_tolerance);
-  o.amplitudes = run.amplitudes;
-  o.outputs = run.outputs;
-  o.events = run.events;
-  o.stats = run.stats;
+  // With a symmetry the run covered half the period: the full period's signals from a plain run.
+  PeriodRun<System> full;
+  if (has_sym_) {
+    full = run_period(sys_, mode, t0, x0, period, opt_, false);
+    if (!full.ok()) {
+      o.status = ShootingStatus::IntegrationFailed;
+      o.message = "the full-period run of the symmetric orbit failed (" + std::string(to_string(full.status)) +
+                  "): " + full.message;
+      return o;
+    }
+  }
+  const PeriodRun<System>& signals = has_sym_ ? full : run;
+  o.amplitudes = signals.amplitudes;
+  o.outputs = signals.outputs;
+  o.events = signals.events;
+  o.stats = signals.stats;
   if (run.mode_end == mode) {
     o.status = ShootingStatus::Converged;
   } else {
@@ -247,6 +308,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
   detail::require_positive(where, "period", period);
   opt_.validate(where, n);
   detail::require_resolved_period(where, "period", t0, period, opt_.stepper);
+  if (has_sym_) sym_.validate(where + "::half_period_symmetry", n);
 
   const auto P = opt_.periodic_indices(n);
   const auto p = static_cast<Eigen::Index>(P.size());
@@ -271,7 +333,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
     return failed;
   };
   const double cpu0 = detail::thread_cpu_seconds();  // ShootingOptions::progress's clock
-  PeriodRun<System> run = run_period(sys_, mode, t0, x, T, opt_, true);
+  PeriodRun<System> run = run_orbit(mode, t0, x, T, true);
   ++runs;
   if (!run.ok()) return run_failed(run, 0);
   Scalar res = residual(run.x_end, x, r);
@@ -360,7 +422,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
                          detail::format_value(res) + ")";
         return failed;
       }
-      PeriodRun<System> trial = run_period(sys_, mode, t0, xt, Tt, opt_, true);
+      PeriodRun<System> trial = run_orbit(mode, t0, xt, Tt, true);
       ++runs;
       if (!trial.ok()) {
         if (!last && !trial.interrupted) continue;
