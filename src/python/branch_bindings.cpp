@@ -164,7 +164,7 @@ void set_up(PySwitching& s, const char* where, const py::object& system, const p
             int max_iterations, double rtol, double atol, double initial_step, double min_step, double max_step,
             int max_points, int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
             int chord_iterations, long max_steps, const std::optional<Eigen::MatrixXd>& outputs, int output_harmonics,
-            OrbitIntegrator integrator) {
+            OrbitIntegrator integrator, bool wrap_section) {
   const std::string w = where;
   check_callables(w, parameter, period, start_mode);
   detail::require_finite(w, "p_min", p_min);
@@ -181,7 +181,8 @@ void set_up(PySwitching& s, const char* where, const py::object& system, const p
     return so;
   });
   s.options = continuation_options(p_min, p_max, initial_step, min_step, max_step, max_points,
-                                   max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations);
+                                   max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations,
+                                   wrap_section);
   s.options.validate(w);
 }
 
@@ -193,7 +194,8 @@ void set_up(PySwitching& s, const char* where, const py::object& system, const p
   py::arg("max_points") = 200, py::arg("max_corrector_iterations") = 8, py::arg("fast_iterations") = 3,            \
   py::arg("growth") = 1.5, py::arg("section_margin") = 0.02, py::arg("chord_iterations") = 0,                     \
   py::arg("max_steps") = StepperOptions<double>{}.max_steps, py::arg("outputs") = py::none(),                    \
-  py::arg("output_harmonics") = 3, py::arg("integrator") = OrbitIntegrator::DormandPrince54
+  py::arg("output_harmonics") = 3, py::arg("integrator") = OrbitIntegrator::DormandPrince54,                      \
+  py::arg("wrap_section") = true
 
 /// The keywords' documentation (appended to the classes' constructors').
 constexpr const char* kSwitchingKeywords =
@@ -203,9 +205,9 @@ constexpr const char* kSwitchingKeywords =
     "None = the default components, monodromy 'variational', tolerance 1e-9, max_iterations 30, rtol 1e-10, "
     "atol 1e-12, initial_step 0.01, min_step 1e-6, max_step 0.1, max_points 200, max_corrector_iterations 8, "
     "fast_iterations 3, growth 1.5, section_margin 0.02, chord_iterations 0, outputs None, output_harmonics 3, "
-    "integrator DormandPrince54); use the same as for the branch the points come from. The methods lock the "
-    "system, release the GIL (the callables take it back; a Python exception they raise propagates) and leave the "
-    "system at the parameter of the last orbit; Ctrl-C stops them (KeyboardInterrupt).";
+    "integrator DormandPrince54, wrap_section True); use the same as for the branch the points come from. The "
+    "methods lock the system, release the GIL (the callables take it back; a Python exception they raise "
+    "propagates) and leave the system at the parameter of the last orbit; Ctrl-C stops them (KeyboardInterrupt).";
 
 /// PeriodDoubling as Python sees it.
 struct PyPeriodDoubling : PySwitching {};
@@ -215,6 +217,16 @@ struct PySymmetricBranches : PySwitching {
   Eigen::MatrixXd symmetry;
   py::object mode_image;
   double symmetry_tolerance = 1e-6;
+  bool half_period_shift = false;
+  std::optional<State> centre;  // None: the map S x
+};
+
+/// SymmetricBranches::HalfPeriodMultipliers as Python sees it.
+struct PyHalfPeriodMultipliers {
+  bool ok = false;
+  std::string message;
+  double asymmetry = 0;
+  Eigen::VectorXcd eigenvalues;
 };
 
 /// The continuation callables of `s` for the system type Py.
@@ -248,6 +260,8 @@ SymmetricBranches<typename Py::Wrapped> make_symmetric(const PySymmetricBranches
       system, [&cb](Sys& x, double p) { cb.set(x, p); }, [&cb](double p) { return cb.period_of(p); }, s.symmetry, so,
       s.options);
   sb.symmetry_tolerance(s.symmetry_tolerance);
+  sb.half_period_shift(s.half_period_shift);
+  if (s.centre) sb.symmetry_centre(*s.centre);
   if (!s.start_mode.is_none())
     sb.start_mode([&cb](Sys& x, double t, const State& xs, const Mode& prev) { return cb.mode_of(x, t, xs, prev); });
   if (!s.mode_image.is_none()) {
@@ -394,6 +408,19 @@ void bind_branches(py::module_& m) {
                     "the period-T branch's unit tangent in (x_P, p) at the flip (numpy: the periodic components, "
                     "then p; the secant of the two points)");
 
+  py::class_<PyHalfPeriodMultipliers>(
+      m, "HalfPeriodMultipliers",
+      "An orbit run over half its period under a symmetry with a half-period shift "
+      "(SymmetricBranches.half_period_multipliers).")
+      .def_readonly("ok", &PyHalfPeriodMultipliers::ok, "the run succeeded; otherwise see message")
+      .def_readonly("message", &PyHalfPeriodMultipliers::message, "why not (empty when ok)")
+      .def_readonly("asymmetry", &PyHalfPeriodMultipliers::asymmetry,
+                    "max |x(t0 + T/2) - (c + S (x0 - c))| over the periodic components (0 for a symmetric orbit; "
+                    "units of the state)")
+      .def_readonly("eigenvalues", &PyHalfPeriodMultipliers::eigenvalues,
+                    "eigenvalues of the half-period map H = S dx(t0 + T/2)/dx(t0) over the periodic components "
+                    "(numpy, complex; the orbit's Floquet multipliers are their squares)");
+
   py::class_<PySymmetryBreakingPoint>(
       m, "SymmetryBreakingPoint",
       "A multiplier through +1 between two points of a symmetric branch (SymmetricBranches.classify, .locate).")
@@ -420,7 +447,7 @@ void bind_branches(py::module_& m) {
       std::string("Branch switching at a period doubling of a branch of continue_orbits on `system` (a "
                   "FrictionDampedSystem, ContactSystem, BodyContactSystem or MixedContactSystem; TypeError otherwise). "
                   "C++ PeriodDoubling; docs/python_branches.md.") +
-      kSwitchingKeywords;
+      kSwitchingKeywords + " " + kWrapSectionDoc;
   py::class_<PyPeriodDoubling>(m, "PeriodDoubling",
                                "Branch switching at a period doubling (flip) of a branch of continue_orbits: the flip "
                                "located by a secant on the multiplier through -1 (locate_flip), and the branch of "
@@ -431,12 +458,12 @@ void bind_branches(py::module_& m) {
                        double initial_step, double min_step, double max_step, int max_points,
                        int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
                        int chord_iterations, long max_steps, std::optional<Eigen::MatrixXd> outputs,
-                       int output_harmonics, OrbitIntegrator integrator) {
+                       int output_harmonics, OrbitIntegrator integrator, bool wrap_section) {
              PyPeriodDoubling s;
              set_up(s, "PeriodDoubling", system, parameter, period, p_min, p_max, start_mode, periodic, monodromy,
                     tolerance, max_iterations, rtol, atol, initial_step, min_step, max_step, max_points,
                     max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations, max_steps,
-                    outputs, output_harmonics, integrator);
+                    outputs, output_harmonics, integrator, wrap_section);
              return s;
            }),
            py::arg("system"), py::arg("parameter"), py::arg("period"), py::arg("p_min"), py::arg("p_max"),
@@ -492,8 +519,17 @@ void bind_branches(py::module_& m) {
                   "onto solutions (ValueError naming symmetry otherwise); mode_image(mode) -> mode gives the contact "
                   "states of a mirrored state (default: the same; e.g. two mirrored contacts swapped); an orbit "
                   "counts as symmetric when max |S x0 - x0| over its periodic components is at most "
-                  "symmetry_tolerance max(1, max |x0|).") +
-      kSwitchingKeywords;
+                  "symmetry_tolerance max(1, max |x0|). half_period_shift=True: the symmetry acts with a shift by "
+                  "half the forcing period T, x(t) solves the equations iff S x(t + T/2) does (mirror-image "
+                  "substructures forced in antiphase, e.g. the two blades of a disk at engine order 1); a symmetric "
+                  "orbit then has x(t0 + T/2) = S x(t0), its monodromy is M = H^2 with the half-period map "
+                  "H = S dx(t0 + T/2)/dx(t0), and a multiplier of M through +1 is a symmetry-breaking pitchfork where "
+                  "an eigenvalue of H crosses -1, a fold where one crosses +1 (classify and locate then run half a "
+                  "period per orbit). symmetry_centre=c (numpy, state_size entries, finite; ValueError naming "
+                  "symmetry_centre otherwise): the state the symmetry keeps fixed, the map x -> c + S (x - c) "
+                  "(default None: S x), for coordinates that a mirror maps affinely (e.g. contact positions X -> "
+                  "L - X).") +
+      kSwitchingKeywords + " " + kWrapSectionDoc;
   py::class_<PySymmetricBranches>(
       m, "SymmetricBranches",
       "Symmetry breaking on the branches of continue_orbits (C++ SymmetricBranches; docs/python_branches.md): a "
@@ -507,19 +543,22 @@ void bind_branches(py::module_& m) {
                        int max_iterations, double rtol, double atol, double initial_step, double min_step,
                        double max_step, int max_points, int max_corrector_iterations, int fast_iterations,
                        double growth, double section_margin, int chord_iterations, long max_steps,
-                       std::optional<Eigen::MatrixXd> outputs, int output_harmonics, OrbitIntegrator integrator) {
+                       std::optional<Eigen::MatrixXd> outputs, int output_harmonics, OrbitIntegrator integrator,
+                       bool wrap_section, bool half_period_shift, std::optional<State> symmetry_centre) {
              static const char* where = "SymmetricBranches";
              PySymmetricBranches s;
              set_up(s, where, system, parameter, period, p_min, p_max, start_mode, periodic, monodromy, tolerance,
                     max_iterations, rtol, atol, initial_step, min_step, max_step, max_points, max_corrector_iterations,
                     fast_iterations, growth, section_margin, chord_iterations, max_steps, outputs, output_harmonics,
-                    integrator);
+                    integrator, wrap_section);
              if (!mode_image.is_none() && !PyCallable_Check(mode_image.ptr()))
                throw std::invalid_argument(std::string(where) +
                                            ": mode_image must be None or a callable mode_image(mode)");
              s.symmetry = symmetry;
              s.mode_image = mode_image;
              s.symmetry_tolerance = symmetry_tolerance;
+             s.half_period_shift = half_period_shift;
+             s.centre = std::move(symmetry_centre);
              dispatch(system, where, [&](auto& sys) {
                using Py = std::decay_t<decltype(sys)>;
                if (symmetry.rows() != sys.state_size())
@@ -527,6 +566,13 @@ void bind_branches(py::module_& m) {
                                        "symmetry must be state_size() x state_size() (" +
                                            std::to_string(sys.state_size()) + "), rows",
                                        symmetry.rows());
+               if (s.centre && s.centre->size() != sys.state_size())
+                 detail::throw_invalid(where,
+                                       "symmetry_centre must have state_size() (" + std::to_string(sys.state_size()) +
+                                           ") entries, size",
+                                       s.centre->size());
+               if (s.centre && !detail::all_finite(*s.centre))
+                 throw std::invalid_argument(std::string(where) + ": symmetry_centre must be finite");
                const auto cb = callbacks<Py>(s, where);
                make_symmetric(s, sys, cb, nullptr);  // validates the symmetry and the options
                return 0;
@@ -535,8 +581,14 @@ void bind_branches(py::module_& m) {
            }),
            py::arg("system"), py::arg("parameter"), py::arg("period"), py::arg("symmetry"), py::arg("p_min"),
            py::arg("p_max"), py::arg("mode_image") = py::none(), py::arg("symmetry_tolerance") = 1e-6,
-           STICKSLIP_SWITCHING_ARGS, sb_doc.c_str())
+           STICKSLIP_SWITCHING_ARGS, py::arg("half_period_shift") = false, py::arg("symmetry_centre") = py::none(),
+           sb_doc.c_str())
       .def_readonly("symmetry", &PySymmetricBranches::symmetry, "the symmetry S (numpy, state_size x state_size)")
+      .def_readonly("half_period_shift", &PySymmetricBranches::half_period_shift,
+                    "True: the symmetry maps a solution x(t) onto S x(t + T/2) (symmetric orbits: x(t0 + T/2) = "
+                    "S x(t0)); False: onto S x(t) (symmetric orbits: S x = x)")
+      .def_readonly("symmetry_centre", &PySymmetricBranches::centre,
+                    "the state c the symmetry keeps fixed, x -> c + S (x - c) (numpy), or None: the map S x")
       .def(
           "asymmetry",
           [](const PySymmetricBranches& s, const State& x) {
@@ -547,8 +599,10 @@ void bind_branches(py::module_& m) {
             });
           },
           py::arg("x"),
-          "max |S x - x| over the periodic components (0 for a symmetric state; units of the state). ValueError "
-          "when x's size is not the symmetry's.")
+          "max |c + S (x - c) - x| over the periodic components (c: symmetry_centre, default 0; 0 for a state "
+          "that the symmetry maps onto itself; units of the state), whatever half_period_shift (with the shift, a "
+          "symmetric orbit's defect is half_period_multipliers(point).asymmetry). ValueError when x's size is not "
+          "the symmetry's.")
       .def(
           "multipliers_by_symmetry",
           [](const PySymmetricBranches& s, const Eigen::MatrixXd& monodromy) {
@@ -561,14 +615,42 @@ void bind_branches(py::module_& m) {
           py::arg("monodromy"),
           "The multipliers of a symmetric orbit's monodromy (PeriodicOrbit.monodromy) split by the symmetry of their "
           "Floquet vectors: (those on V+ = {S v = v}, those on V- = {S v = -v}), two complex numpy arrays. "
-          "ValueError when the monodromy is not square over the periodic components.")
+          "ValueError when the monodromy is not square over the periodic components, or with half_period_shift "
+          "(the split then needs the half-period map: half_period_multipliers).")
+      .def(
+          "half_period_multipliers",
+          [](const PySymmetricBranches& s, const py::object& point) {
+            static const std::string where = "SymmetricBranches.half_period_multipliers";
+            if (!s.half_period_shift) throw std::invalid_argument(where + ": needs half_period_shift=True");
+            return dispatch(s.system, where, [&](auto& system) {
+              using Py = std::decay_t<decltype(system)>;
+              const auto pt = point_from_python(system, s.shooting, point, where + ": point");
+              const auto cb = callbacks<Py>(s, "SymmetricBranches");
+              return with_system(system, [&](SignalCheck& signals) {
+                const auto h = make_symmetric(s, system, cb, &signals).half_period_multipliers(pt);
+                return PyHalfPeriodMultipliers{h.ok, h.message, h.asymmetry, h.eigenvalues};
+              });
+            });
+          },
+          py::arg("point"),
+          "With half_period_shift=True: the orbit of `point` (a ContinuationPoint, or any object with parameter and "
+          "orbit.t0, .period, .x0, .mode, .monodromy; the system set to its parameter) run over half its period "
+          "with its sensitivity, as a HalfPeriodMultipliers: asymmetry = max |x(t0 + T/2) - (c + S (x0 - c))| over "
+          "the periodic components (0 for a symmetric orbit) and the eigenvalues of the half-period map "
+          "H = S dx(t0 + T/2)/dx(t0) over them (the orbit's Floquet multipliers are their squares, M = H^2; an "
+          "eigenvalue near -1 belongs to an antisymmetric Floquet vector, one near +1 to a symmetric one). Not ok "
+          "(message) when the run fails. ValueError without half_period_shift or for a point that does not fit "
+          "the system. Locks the system and releases the GIL.")
       .def(
           "classify",
           [](const PySymmetricBranches& s, const py::object& a, const py::object& b) {
             static const std::string where = "SymmetricBranches.classify";
             return with_points(s, a, b, where, "SymmetricBranches", [&](auto& system, const auto& cb,
                                                                         const auto& pa, const auto& pb) {
-              return symmetry_to_py(make_symmetric(s, system, cb, nullptr).classify(pa, pb));
+              // With half_period_shift it runs the system (half a period per point).
+              return with_system(system, [&](SignalCheck& signals) {
+                return symmetry_to_py(make_symmetric(s, system, cb, &signals).classify(pa, pb));
+              });
             });
           },
           py::arg("a"), py::arg("b"),
@@ -577,7 +659,10 @@ void bind_branches(py::module_& m) {
           "Pitchfork when det(M - I) on V- changes sign between them (a real multiplier with an antisymmetric "
           "Floquet vector crossed +1), Fold when det(M - I) on V+ does; `parameter` interpolates that determinant's "
           "zero linearly. Not ok (message) when an orbit is not symmetric or neither determinant changes sign. "
-          "Runs nothing.")
+          "Without half_period_shift it runs nothing. With it: an orbit is symmetric when "
+          "max |x(t0 + T/2) - (c + S (x0 - c))| <= symmetry_tolerance max(1, max |x0|), and the half-period map "
+          "H = S dx(t0 + T/2)/dx(t0) of each point (half a period run with its sensitivity) decides: Pitchfork when "
+          "det(H + I) changes sign (an eigenvalue of H crossed -1), Fold when det(H - I) does.")
       .def(
           "locate",
           [](const PySymmetricBranches& s, const py::object& a, const py::object& b, double tolerance) {
@@ -595,7 +680,9 @@ void bind_branches(py::module_& m) {
           "tolerance (default 1e-8, dimensionless) by a secant in p on det(M - I) over V- (the bracket [a, b] "
           "kept), each orbit shot at fixed p from the nearer orbit made symmetric. A fold is returned as classified "
           "(not located). Not ok when the points lie on different sections t0, a shooting fails or the secant does "
-          "not converge in 40 orbits.")
+          "not converge in 40 orbits. With half_period_shift the secant is on det(H + I), each orbit shot from the "
+          "nearer orbit as it is, until the eigenvalue h of H nearest -1 has |h^2 - 1| <= tolerance (the "
+          "multiplier h^2 at 1).")
       .def(
           "asymmetric_branch",
           [](const PySymmetricBranches& s, const PySymmetryBreakingPoint& pitchfork, double offset) {

@@ -208,7 +208,8 @@ inline void check_callables(const std::string& where, const py::object& paramete
 inline ContinuationOptions<double> continuation_options(double p_min, double p_max, double initial_step,
                                                         double min_step, double max_step, int max_points,
                                                         int max_corrector_iterations, int fast_iterations,
-                                                        double growth, double section_margin, int chord_iterations) {
+                                                        double growth, double section_margin, int chord_iterations,
+                                                        bool wrap_section) {
   ContinuationOptions<double> co;
   co.parameter_min = p_min;
   co.parameter_max = p_max;
@@ -221,6 +222,7 @@ inline ContinuationOptions<double> continuation_options(double p_min, double p_m
   co.growth = growth;
   co.section_margin = section_margin;
   co.chord_iterations = chord_iterations;
+  co.wrap_section = wrap_section;
   return co;
 }
 
@@ -245,6 +247,15 @@ std::vector<PyContinuationPoint> to_py(const std::vector<ContinuationPoint<Sys>>
   for (const auto& pt : points) out.push_back(to_py(pt));
   return out;
 }
+
+/// What wrap_section= does (continue_orbits, PeriodDoubling, SymmetricBranches).
+constexpr const char* kWrapSectionDoc =
+    "wrap_section (default True; ContinuationOptions::wrap_section) keeps the section in the first forcing period, "
+    "t0 in [0, T(p)): the start's t0 becomes t0 - k T(p0), k = floor(t0 / T(p0)) (the forcing is T-periodic, so "
+    "the orbit through (t0 - k T, x0) is the one through (t0, x0)), and a section moved past T(p) by "
+    "section_margin goes back by whole periods; at a late section t0 = k T the state x0(t0) turns with the forcing "
+    "phase w t0 as the frequency w varies, |dx0/dw| ~ |x| t0, which winds a frequency branch into a helix the "
+    "predictor misses. False: t0 as given (a system whose time dependence is not T(p)-periodic).";
 
 /// One part of continue_orbits(parts = n > 1) (SplitContinuation's ContinuationPart).
 struct PyContinuationPart {

@@ -74,6 +74,7 @@ using stickslip_python::check_start;
 using stickslip_python::check_callables;
 using stickslip_python::checked_max_steps;
 using stickslip_python::continuation_options;
+using stickslip_python::kWrapSectionDoc;
 using stickslip_python::ContinuationCallbacks;
 using stickslip_python::default_periodic_size;
 using stickslip_python::num_contacts_of;
@@ -1625,7 +1626,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
          int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
          const py::object& start, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
-         const py::object& progress, OrbitIntegrator integrator) {
+         const py::object& progress, OrbitIntegrator integrator, bool wrap_section) {
         static const std::string where = "continue_orbits";
         if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
           throw std::invalid_argument(where + ": progress must be None or a callable progress(report)");
@@ -1646,7 +1647,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
         if (!(p_end != p0)) detail::throw_invalid(where, "p_end must differ from p0", p_end);
         ContinuationOptions<double> co = continuation_options(
             std::min(p0, p_end), std::max(p0, p_end), initial_step, min_step, max_step, max_points,
-            max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations);
+            max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations, wrap_section);
         co.direction = p_end > p0 ? 1 : -1;
         if (!progress.is_none())
           co.progress = [&progress](const ContinuationProgress& pr) {
@@ -1728,7 +1729,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
       py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       py::arg("outputs") = py::none(), py::arg("output_harmonics") = 3, py::arg("progress") = py::none(),
-      py::arg("integrator") = OrbitIntegrator::DormandPrince54, doc);
+      py::arg("integrator") = OrbitIntegrator::DormandPrince54, py::arg("wrap_section") = true, doc);
 }
 
 void bind_steady_state(py::module_& m) {
@@ -1844,6 +1845,7 @@ void bind_steady_state(py::module_& m) {
           "the points' parameters (numpy)");
   def_continue_orbits<PySystem>(
       m,
+      std::string(
       "Pseudo-arclength continuation of forced periodic orbits in a parameter p from p0 towards p_end "
       "(Continuation, docs/steady_state.md): parameter(system, p) returns the FrictionDampedSystem at p (it replaces "
       "`system`, which is left at the last point's p); period is the forcing period, a float or period(p). The start "
@@ -1862,7 +1864,9 @@ void bind_steady_state(py::module_& m) {
       "PeriodicOrbit.outputs (OrbitSignal, output_harmonics harmonics); progress(report): called after each point "
       "with a ContinuationProgress (CPU seconds so far, an estimate of those left). A failed branch's message names "
       "what stalled the corrector (an event at the period start, a grazing, a discontinuity of the period map) and "
-      "the option that addresses it.");
+      "the option that addresses it. " +
+          std::string(kWrapSectionDoc))
+          .c_str());
   def_continue_orbits<PyContactSystem>(
       m,
       "A ContactSystem's branch, as above: parameter(system, p) returns the ContactSystem at p (the same number of "
