@@ -266,13 +266,20 @@ int main(int argc, char** argv) {
     System::Mode mode = first.requested_mode();
     first.make_consistent(mode, 0.0, guess);
     int ok = 0;
+    std::string first_failure;
     const auto t0 = Clock::now();
     const auto points = travelling_wave_sweep<System>(
         [&](double om) { return scene.system(om, N0); },
         [&](const System& s) { return travelling_wave_shift(scene.disk, scene.basis, s, p24.engine_order); }, omegas,
-        mode, guess, wave_options(), [&](const TravellingWaveSweepPoint<System>& pt) { ok += pt.orbit.ok() ? 1 : 0; });
+        mode, guess, wave_options(), [&](const TravellingWaveSweepPoint<System>& pt) {
+          ok += pt.orbit.ok() ? 1 : 0;
+          if (!pt.orbit.ok() && first_failure.empty())
+            first_failure = "; first failure at Omega = " + std::to_string(pt.omega) + " rad/s: " +
+                            std::string(to_string(pt.orbit.status)) + ", residual " + std::to_string(pt.orbit.residual) + ", " +
+                            pt.orbit.message;
+        });
     report("frc_N24_" + std::to_string(frc_points) + "_points", since(t0), "s",
-           std::to_string(ok) + " converged, target <= 30 s for 100");
+           std::to_string(ok) + " converged, target <= 30 s for 100" + first_failure);
   }
 
   write_rows(out);

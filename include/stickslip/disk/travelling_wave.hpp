@@ -94,6 +94,9 @@ struct TravellingWaveOptions {
   /// Also integrate the converged orbit over the full period T with its monodromy (the
   /// full-annulus Floquet check: about L times the cost of one travelling-wave run).
   bool full_annulus_check = false;
+  /// How often solve() repeats a solve whose state closes but whose start mode the orbit does not
+  /// reproduce, from the mode the run ends in shifted back (>= 0; 0: report ModeNotPeriodic).
+  int mode_retries = 3;
 };
 
 /// Which Floquet analysis a travelling-wave orbit carries.
@@ -179,6 +182,7 @@ class TravellingWaveShooting {
                             shift_.contact_source.size());
     if (opt_.shooting.periodic.empty()) opt_.shooting.periodic = ShootingOptions<Scalar>::first(2 * system.num_coordinates());
     opt_.shooting.validate(where, n);
+    if (opt_.mode_retries < 0) detail::throw_invalid(where, "options.mode_retries must be >= 0; mode_retries", opt_.mode_retries);
   }
 
   /// The options in use (periodic filled in).
@@ -190,9 +194,21 @@ class TravellingWaveShooting {
   /// \throws std::invalid_argument for an empty or non-finite x0, non-finite t0, period <= 0,
   ///         or a system without the shift's symmetry at (mode, t0) (its loads not the engine
   ///         order's, or the disk mistuned): rhs(S m, t0 + tau, S x) != S rhs(m, t0, x).
+  /// A start mode that the converged state does not reproduce (x(t0 + tau) = S x(t0) but the
+  /// mode at t0 + tau is not S mode: the guess's stick/slip pattern was not the orbit's) is
+  /// replaced by the one the run ends in, shifted back (S^-1 mode(t0 + tau)), and the solve
+  /// repeated from the converged state, at most options().mode_retries times.
   Orbit solve(const Mode& mode, Scalar t0, const State& x0, Scalar period);
 
  private:
+  Orbit solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period, Scalar tau);
+  /// The mode m with S m = `shifted` (contact_source[i] of m is contact i of `shifted`).
+  Mode unshifted(const Mode& shifted) const {
+    Mode m = shifted;
+    for (std::size_t i = 0; i < shift_.contact_source.size(); ++i)
+      m[shift_.contact_source[i]] = shifted[static_cast<Eigen::Index>(i)];
+    return m;
+  }
   void require_symmetry(const Mode& mode, Scalar t0, const State& x0, Scalar tau);
   Scalar residual(const State& x_end, const State& x0, Vector& r) const {
     const State sx = shift_.state * x0;
@@ -283,7 +299,23 @@ auto TravellingWaveShooting<System>::solve(const Mode& mode, Scalar t0, const St
   const Scalar tau = period / Scalar(shift_.symmetry.shifts_per_period);
   detail::require_resolved_period(where, "period", t0, tau, opt_.shooting.stepper);
   require_symmetry(mode, t0, x0, tau);
+  Orbit o = solve_in_mode(mode, t0, x0, period, tau);
+  for (int retry = 0; retry < opt_.mode_retries && o.status == ShootingStatus::ModeNotPeriodic; ++retry) {
+    const Mode next = unshifted(o.events.empty() ? shift_.shifted(o.mode) : o.events.back().to);
+    if (next == o.mode) break;
+    const int runs = o.iterations;
+    const std::string before = o.message;
+    o = solve_in_mode(next, t0, o.x0, period, tau);
+    o.iterations += runs;
+    if (o.status == ShootingStatus::ModeNotPeriodic) o.message += " (after a retry from: " + before + ")";
+  }
+  return o;
+}
 
+template <class System>
+auto TravellingWaveShooting<System>::solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period,
+                                                   Scalar tau) -> Orbit {
+  const Eigen::Index n = x0.size();
   const Shooting<System> sh = shooter();
   const auto P = opt_.shooting.periodic_indices(n);
   const auto p = static_cast<Eigen::Index>(P.size());
