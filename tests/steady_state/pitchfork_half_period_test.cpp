@@ -427,8 +427,8 @@ TEST(SteadyStatePitchforkHalfPeriod, HalfPeriodSymmetryRejectsBadInputNamingTheP
   AntiphasePair sys;
   stickslip::Shooting<AntiphasePair> shooting(sys);
   const auto message = [&](const stickslip::HalfPeriodSymmetry<AntiphasePair>& sym) {
-    shooting.half_period_symmetry(sym);
     try {
+      shooting.half_period_symmetry(sym);  // checks S and the centre
       shooting.forced(0, 0.0, sys.symmetric_start(1.0), 2 * kPi);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());

@@ -42,6 +42,13 @@ struct TravellingWaveShift {
       out[static_cast<Eigen::Index>(i)] = m[contact_source[i]];
     return out;
   }
+  /// The mode m with shifted(m) = `image` (the inverse permutation).
+  template <class Mode>
+  Mode unshifted(const Mode& image) const {
+    Mode m = image;
+    for (std::size_t i = 0; i < contact_source.size(); ++i) m[contact_source[i]] = image[static_cast<Eigen::Index>(i)];
+    return m;
+  }
 };
 
 /// The shift of `system` (a ContactSystem over disk.frame() and `basis`, its bodies and contacts
@@ -202,13 +209,7 @@ class TravellingWaveShooting {
 
  private:
   Orbit solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period, Scalar tau);
-  /// The mode m with S m = `shifted` (contact_source[i] of m is contact i of `shifted`).
-  Mode unshifted(const Mode& shifted) const {
-    Mode m = shifted;
-    for (std::size_t i = 0; i < shift_.contact_source.size(); ++i)
-      m[shift_.contact_source[i]] = shifted[static_cast<Eigen::Index>(i)];
-    return m;
-  }
+
   void require_symmetry(const Mode& mode, Scalar t0, const State& x0, Scalar tau);
   Scalar residual(const State& x_end, const State& x0, Vector& r) const {
     const State sx = shift_.state * x0;
@@ -301,7 +302,7 @@ auto TravellingWaveShooting<System>::solve(const Mode& mode, Scalar t0, const St
   require_symmetry(mode, t0, x0, tau);
   Orbit o = solve_in_mode(mode, t0, x0, period, tau);
   for (int retry = 0; retry < opt_.mode_retries && o.status == ShootingStatus::ModeNotPeriodic; ++retry) {
-    const Mode next = unshifted(o.events.empty() ? shift_.shifted(o.mode) : o.events.back().to);
+    const Mode next = shift_.unshifted(o.events.empty() ? o.mode : o.events.back().to);  // S^-1 (end mode)
     if (next == o.mode) break;
     const int runs = o.iterations;
     const std::string before = o.message;

@@ -107,13 +107,14 @@ class SymmetricBranches {
   /// max(1, max |S|^2)).
   SymmetricBranches(System& system, typename Cont::SetParameter set_parameter, typename Cont::PeriodOf period,
                     Matrix symmetry, ShootingOptions<Scalar> shooting = {}, ContinuationOptions<Scalar> options = {})
-      : sys_(system), set_(std::move(set_parameter)), period_(std::move(period)), S_(std::move(symmetry)),
+      : sys_(system), set_(std::move(set_parameter)), period_(std::move(period)),
         shooting_(std::move(shooting)), opt_(options) {
     static const std::string where = "SymmetricBranches";
     if (!set_) throw std::invalid_argument(where + ": set_parameter must not be empty");
     if (!period_) throw std::invalid_argument(where + ": period must not be empty");
     opt_.validate(where);
-    detail::require_involution(where, "symmetry", S_);
+    detail::require_involution(where, "symmetry", symmetry);
+    sym_.S = std::move(symmetry);
   }
 
   /// The symmetry acts with a half-period shift (see the file's description): x(t) solves the
@@ -129,16 +130,15 @@ class SymmetricBranches {
     static const std::string where = "SymmetricBranches::symmetry_centre";
     check_size(where, c.size());
     if (!detail::all_finite(c)) throw std::invalid_argument(where + ": c must be finite");
-    centre_ = c;
-    has_centre_ = true;
+    sym_.centre = c;
   }
   /// The image of a state: c + S (x - c) (S x without a centre).
-  State mirror(const State& x) const {
-    if (!has_centre_) return S_ * x;
-    return centre_ + S_ * (x - centre_);
-  }
+  State mirror(const State& x) const { return sym_.mirror(x); }
   /// The mode of a mirrored state (default: the same mode).
-  void mode_image(ModeImage f) { mode_image_ = std::move(f); }
+  void mode_image(ModeImage f) { sym_.mode_image = std::move(f); }
+  /// The symmetry (S, centre, mode image) as Shooting::half_period_symmetry and
+  /// Continuation::half_period_symmetry take it, to follow the symmetric branch on the half period.
+  const HalfPeriodSymmetry<System>& symmetry() const noexcept { return sym_; }
   /// The start-mode rule of the continued branches and mirrored orbits (Continuation::start_mode).
   void start_mode(typename Cont::StartMode rule) { start_mode_ = std::move(rule); }
   /// An orbit counts as symmetric when max |S x0 - x0| over its periodic components is at most
@@ -242,8 +242,8 @@ class SymmetricBranches {
 
  private:
   void check_size(const std::string& where, Eigen::Index n) const {
-    if (n != S_.rows())
-      detail::throw_invalid(where, "the state size must be the symmetry's (" + std::to_string(S_.rows()) + "), got",
+    if (n != sym_.S.rows())
+      detail::throw_invalid(where, "the state size must be the symmetry's (" + std::to_string(sym_.S.rows()) + "), got",
                             n);
   }
   // Orthonormal bases of V+ (sign +1) and V- (sign -1) in the periodic components.
@@ -253,7 +253,7 @@ class SymmetricBranches {
     Matrix proj(np, np);
     for (Eigen::Index i = 0; i < np; ++i)
       for (Eigen::Index j = 0; j < np; ++j)
-        proj(i, j) = (Scalar(i == j ? 1 : 0) + Scalar(sign) * S_(P[std::size_t(i)], P[std::size_t(j)])) / 2;
+        proj(i, j) = (Scalar(i == j ? 1 : 0) + Scalar(sign) * sym_.S(P[std::size_t(i)], P[std::size_t(j)])) / 2;
     Eigen::ColPivHouseholderQR<Matrix> qr(proj);
     qr.setThreshold(Scalar(1e-8));
     const Matrix Q = qr.householderQ();
@@ -276,7 +276,7 @@ class SymmetricBranches {
   // The half-period map of the orbit at `point` (the system set to its parameter).
   detail::HalfPeriodMap<System> half_map(const ContinuationPoint<System>& point, bool sensitivity) const {
     set_(sys_, point.parameter);
-    return detail::half_period_map(sys_, shooting_, S_, mirror(point.orbit.x0), point.orbit.mode, point.orbit.t0,
+    return detail::half_period_map(sys_, shooting_, sym_.S, mirror(point.orbit.x0), point.orbit.mode, point.orbit.t0,
                                    point.orbit.x0, point.orbit.period, sensitivity);
   }
   SymmetryBreakingPoint<System> classify_half(const ContinuationPoint<System>& a,
@@ -305,22 +305,19 @@ class SymmetricBranches {
     return asymmetry(x) <= sym_tol_ * std::max(Scalar(1), m);
   }
   Mode mirrored_mode(Scalar t0, const State& x, const Mode& mode) {
-    const Mode m = mode_image_ ? mode_image_(mode) : mode;
+    const Mode m = sym_.mirror_mode(mode);
     return start_mode_ ? start_mode_(sys_, t0, x, m) : m;
   }
 
   System& sys_;
   typename Cont::SetParameter set_;
   typename Cont::PeriodOf period_;
-  Matrix S_;
+  HalfPeriodSymmetry<System> sym_;  // S, centre c (default 0) and mode image
   ShootingOptions<Scalar> shooting_;
   ContinuationOptions<Scalar> opt_;
-  ModeImage mode_image_;
   typename Cont::StartMode start_mode_;
   Scalar sym_tol_ = Scalar(1e-6);
   bool half_ = false;
-  State centre_{};  // with has_centre_ only (a fixed-size State has no empty value)
-  bool has_centre_ = false;
 };
 
 template <class System>

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -130,15 +131,19 @@ class Shooting {
 
   /// Shoot on half the period under `symmetry` (see HalfPeriodSymmetry): every orbit run
   /// (run_orbit()) covers T/2 and ends mirrored, forced() finds the symmetric orbits, and their
-  /// monodromy is the full period's M = H^2. Validated per call against the state size.
+  /// monodromy is the full period's M = H^2. Throws std::invalid_argument unless S is a finite
+  /// square involution and the centre empty or finite of S's size; each run checks that S has
+  /// the state's size.
   void half_period_symmetry(HalfPeriodSymmetry<System> symmetry) {
+    // The centre's size where it has one (a fixed-size State always has): S must match it.
+    const Eigen::Index n = symmetry.centre.size() != 0 ? symmetry.centre.size() : symmetry.S.rows();
+    symmetry.validate("Shooting::half_period_symmetry", n);
     sym_ = std::move(symmetry);
-    has_sym_ = true;
   }
   /// Shoot on the full period again.
-  void clear_half_period_symmetry() { has_sym_ = false; }
+  void clear_half_period_symmetry() { sym_.reset(); }
   /// The half-period symmetry in use, nullptr when none.
-  const HalfPeriodSymmetry<System>* half_period_symmetry() const { return has_sym_ ? &sym_ : nullptr; }
+  const HalfPeriodSymmetry<System>* half_period_symmetry() const { return sym_ ? &*sym_ : nullptr; }
 
   /// One orbit run from (mode, t0, x0), with its sensitivity when `sensitivity`: run_period
   /// over `period`; with a half-period symmetry over period / 2 with its end mirrored,
@@ -147,13 +152,13 @@ class Shooting {
   ///
   /// so that x_end = x0 and mode_end = mode hold on the symmetric orbits. Throws like run_period.
   PeriodRun<System> run_orbit(const Mode& mode, Scalar t0, const State& x0, Scalar period, bool sensitivity) {
-    if (!has_sym_) return run_period(sys_, mode, t0, x0, period, opt_, sensitivity);
-    sym_.validate("Shooting::half_period_symmetry", x0.size());
+    if (!sym_) return run_period(sys_, mode, t0, x0, period, opt_, sensitivity);
+    require_symmetry_size("Shooting::half_period_symmetry", x0.size());
     PeriodRun<System> run = run_period(sys_, mode, t0, x0, period / 2, opt_, sensitivity);
     if (!run.ok()) return run;
-    run.x_end = sym_.mirror(run.x_end);
-    if (run.monodromy.size()) run.monodromy = sym_.S * run.monodromy;
-    run.mode_end = sym_.mirror_mode(run.mode_end);
+    run.x_end = sym_->mirror(run.x_end);
+    if (run.monodromy.size()) run.monodromy = sym_->S * run.monodromy;
+    run.mode_end = sym_->mirror_mode(run.mode_end);
     return run;
   }
 
@@ -167,7 +172,7 @@ class Shooting {
   /// The autonomous orbit through (mode, x0 guess) with period guess `period` (t0 = 0).
   /// Throws like forced(), and with a half-period symmetry set (not supported).
   Orbit autonomous(const Mode& mode, const State& x0, Scalar period) {
-    if (has_sym_)
+    if (sym_)
       throw std::invalid_argument("Shooting::autonomous: a half-period symmetry is not supported (clear it)");
     return solve(mode, Scalar(0), x0, period, true);
   }
@@ -218,8 +223,12 @@ class Shooting {
 
   System& sys_;
   ShootingOptions<Scalar> opt_;
-  HalfPeriodSymmetry<System> sym_;
-  bool has_sym_ = false;
+  std::optional<HalfPeriodSymmetry<System>> sym_;  // empty: shoot on the full period
+  // The symmetry (validated when set) acts on states of n entries.
+  void require_symmetry_size(const std::string& where, Eigen::Index n) const {
+    if (sym_->S.rows() != n)
+      detail::throw_invalid(where, "S must have the state size " + std::to_string(n) + ", rows", sym_->S.rows());
+  }
 };
 
 template <class System>
@@ -256,7 +265,7 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.residual = residual;
   o.iterations = iterations;
   o.monodromy = periodic_block(run.monodromy);
-  if (has_sym_) {
+  if (sym_) {
     o.half_period_map = o.monodromy;
     o.monodromy = o.half_period_map * o.half_period_map;
   }
@@ -268,7 +277,7 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.floquet = floquet_multipliers<Scalar>(o.monodromy, autonomous, opt_.multiplier_tolerance);
   // With a symmetry the run covered half the period: the full period's signals from a plain run.
   PeriodRun<System> full;
-  if (has_sym_) {
+  if (sym_) {
     full = run_period(sys_, mode, t0, x0, period, opt_, false);
     if (!full.ok()) {
       o.status = ShootingStatus::IntegrationFailed;
@@ -277,7 +286,7 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
       return o;
     }
   }
-  const PeriodRun<System>& signals = has_sym_ ? full : run;
+  const PeriodRun<System>& signals = sym_ ? full : run;
   o.amplitudes = signals.amplitudes;
   o.outputs = signals.outputs;
   o.events = signals.events;
@@ -308,7 +317,7 @@ auto Shooting<System>::solve(const Mode& mode, Scalar t0, const State& x0, Scala
   detail::require_positive(where, "period", period);
   opt_.validate(where, n);
   detail::require_resolved_period(where, "period", t0, period, opt_.stepper);
-  if (has_sym_) sym_.validate(where + "::half_period_symmetry", n);
+  if (sym_) require_symmetry_size(where + "::half_period_symmetry", n);
 
   const auto P = opt_.periodic_indices(n);
   const auto p = static_cast<Eigen::Index>(P.size());
