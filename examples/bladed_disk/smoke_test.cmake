@@ -1,6 +1,9 @@
 # ctest's smoke run of the example (examples/bladed_disk/CMakeLists.txt): runs EXE with ARGS
 # (a ;-list) into the directory OUT and checks that it exits 0 and writes its three CSV files
-# (each with a header and at least one row) and its JSON summary, whose mistuning amplification
+# (each with a header and at least one row), that every travelling-wave point of frc.csv converged
+# (ok = 1) with a finite, positive tip amplitude (the quick grid lies where the shooting converges
+# from the stuck guess: a 0 there is a lost point, not a feature of the disk), and its JSON
+# summary, whose mistuning amplification
 # (largest blade peak over the tuned disk's, dampers stuck, 2 % stiffness scatter) lies between
 # 0.95 and Whitehead's bound (1 + sqrt N) / 2: the peak of a mistuned disk near the tuned one's
 # resonance cannot fall far below it for small scatter, and the bound holds for one dominant
@@ -19,6 +22,20 @@ foreach(csv frc linear mistuning)
   list(LENGTH lines n)
   if(n LESS 2)
     message(FATAL_ERROR "${OUT}/${csv}.csv has ${n} lines (a header and at least one row expected)")
+  endif()
+endforeach()
+# frc.csv: preload,omega,ok,tip,stable,max_multiplier,runs,events,seconds
+file(STRINGS "${OUT}/frc.csv" rows)
+list(REMOVE_AT rows 0)
+foreach(row IN LISTS rows)
+  string(REPLACE "," ";" fields "${row}")
+  list(GET fields 2 ok)
+  list(GET fields 3 tip)
+  if(NOT ok STREQUAL "1")
+    message(FATAL_ERROR "frc.csv: a travelling-wave point did not converge: ${row}")
+  endif()
+  if(NOT tip MATCHES "^[0-9]" OR NOT tip GREATER 0)
+    message(FATAL_ERROR "frc.csv: the tip amplitude is not a positive number: ${row}")
   endif()
 endforeach()
 if(NOT EXISTS "${OUT}/summary.json")

@@ -97,6 +97,12 @@ def test_linear_travelling_wave_is_the_closed_form_receptance():
     # Linear and damped: every full-period multiplier has modulus e^{-zeta w_r T} <= 1.
     assert orbit.stable and orbit.max_multiplier < 1.0
     assert orbit.check == ss.FloquetCheck.TravellingWave
+    # mode_retries reaches TravellingWaveOptions: no contacts, so no retry changes the orbit, and a
+    # negative count is refused by the C++ options check, naming the option.
+    again = ss.travelling_wave(system, shift, [], 0.0, x0, T, mode_retries=0)
+    assert again.ok and np.array_equal(again.x0, orbit.x0)
+    with pytest.raises(ValueError, match="mode_retries"):
+        ss.travelling_wave(system, shift, [], 0.0, x0, T, mode_retries=-1)
 
 
 def test_sweep_follows_the_receptance_and_mistuning_of_zero_gives_amplification_one():
