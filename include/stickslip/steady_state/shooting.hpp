@@ -28,7 +28,10 @@ namespace stickslip {
 enum class ShootingStatus : std::uint8_t {
   Converged,          ///< a periodic orbit to the tolerance, its mode sequence closes
   NoConvergence,      ///< Newton did not reach the tolerance (the residual is reported)
-  ModeNotPeriodic,    ///< x(T) = x(0) but the mode at t0 + T is not the start mode
+  /// x(T) = x(0) but the mode at t0 + T is not the start mode; with a half-period symmetry
+  /// also: the symmetric problem closes at t0 + T/2 but the full period does not (an event at
+  /// the mirror point t0 + T/2)
+  ModeNotPeriodic,
   IntegrationFailed,  ///< a run ended early (its status and message are reported)
   SingularJacobian    ///< the Newton matrix is singular (e.g. a multiplier exactly 1)
 };
@@ -180,7 +183,8 @@ class Shooting {
   /// The orbit data (monodromy block, multipliers, amplitudes, events) of a run of run_orbit()
   /// that closes; status Converged, or ModeNotPeriodic when the end mode differs from `mode`.
   /// With a half-period symmetry: half_period_map = H (the run's block), monodromy = H^2, and
-  /// amplitudes, outputs, events and stats from one more (plain) run of the full period.
+  /// amplitudes, outputs, events and stats from one more (plain) run of the full period, which
+  /// must close as well (ModeNotPeriodic otherwise: an event at t0 + T/2).
   /// Used by Continuation.
   Orbit make_orbit(const PeriodRun<System>& run, const Mode& mode, Scalar t0, const State& x0,
                    Scalar period, bool autonomous, Scalar residual, int iterations) const;
@@ -291,6 +295,27 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.outputs = signals.outputs;
   o.events = signals.events;
   o.stats = signals.stats;
+  if (run.mode_end == mode && sym_) {
+    // The symmetric problem closed at t0 + T/2; the full period must close too. It does not
+    // where the mirror point t0 + T/2 lies on a switching surface (e.g. a stick limit grazed
+    // there): the half-period run's end decides that event, a run through it does not. Bound:
+    // the half-period residual carried over the second half by H (|H|_inf), plus the runs'
+    // integration error, with a factor 100 to spare.
+    Vector rf;
+    const Scalar closing = this->residual(full.x_end, x0, rf);
+    const Scalar allowed =
+        Scalar(100) * (Scalar(2) + o.half_period_map.cwiseAbs().rowwise().sum().maxCoeff()) * tolerance_at(x0);
+    if (!(full.mode_end == mode && closing <= allowed)) {
+      o.status = ShootingStatus::ModeNotPeriodic;
+      o.message = "the symmetric orbit closes at t0 + T/2 to " + detail::format_value(residual) +
+                  " but the full period does not (max |x(t0 + T) - x(t0)| = " + detail::format_value(closing) +
+                  (full.mode_end == mode ? std::string() : std::string(", and the mode at t0 + T differs")) +
+                  "): an event at the mirror point t0 + T/2 (a switching surface or a grazing there, which the "
+                  "half-period run's end decides otherwise than a run through it); start it from another t0 "
+                  "(ContinuationOptions::section_margin > 0)";
+      return o;
+    }
+  }
   if (run.mode_end == mode) {
     o.status = ShootingStatus::Converged;
   } else {
