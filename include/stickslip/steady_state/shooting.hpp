@@ -295,12 +295,23 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.outputs = signals.outputs;
   o.events = signals.events;
   o.stats = signals.stats;
-  if (run.mode_end == mode && sym_) {
+  if (!(run.mode_end == mode)) {
+    o.status = ShootingStatus::ModeNotPeriodic;
+    o.message = "x(t0 + T) = x(t0) to " + detail::format_value(residual) +
+                " but the mode at t0 + T differs from the start mode (" +
+                std::to_string(run.events.size()) +
+                " events in the period): an event at the period start (the orbit starts on a "
+                "switching surface: start it from another t0, away from its events; "
+                "Continuation does so with ContinuationOptions::section_margin > 0), or the "
+                "response is not periodic with this period";
+    return o;
+  }
+  if (sym_) {
     // The symmetric problem closed at t0 + T/2; the full period must close too. It does not
-    // where the mirror point t0 + T/2 lies on a switching surface (e.g. a stick limit grazed
-    // there): the half-period run's end decides that event, a run through it does not. Bound:
-    // the half-period residual carried over the second half by H (|H|_inf), plus the runs'
-    // integration error, with a factor 100 to spare.
+    // where the run to t0 + T/2 decides an event that a run through t0 + T/2 does not make: a
+    // switching surface or a grazing at the mirror point, or a guard's excursion inside one long
+    // step (a time-driven guard over a constant state). Bound: the half-period residual carried
+    // over the second half by H (|H|_inf), plus the runs' integration error, 100 times.
     Vector rf;
     const Scalar closing = this->residual(full.x_end, x0, rf);
     const Scalar allowed =
@@ -310,24 +321,14 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
       o.message = "the symmetric orbit closes at t0 + T/2 to " + detail::format_value(residual) +
                   " but the full period does not (max |x(t0 + T) - x(t0)| = " + detail::format_value(closing) +
                   (full.mode_end == mode ? std::string() : std::string(", and the mode at t0 + T differs")) +
-                  "): an event at the mirror point t0 + T/2 (a switching surface or a grazing there, which the "
-                  "half-period run's end decides otherwise than a run through it); start it from another t0 "
-                  "(ContinuationOptions::section_margin > 0)";
+                  "): the run to t0 + T/2 and a run through it see different events - a guard crossed and "
+                  "recrossed inside one step (bound options.stepper.max_step or set stepper.guard_samples), or "
+                  "an event at the mirror point t0 + T/2 (start it from another t0: "
+                  "ContinuationOptions::section_margin > 0)";
       return o;
     }
   }
-  if (run.mode_end == mode) {
-    o.status = ShootingStatus::Converged;
-  } else {
-    o.status = ShootingStatus::ModeNotPeriodic;
-    o.message = "x(t0 + T) = x(t0) to " + detail::format_value(residual) +
-                " but the mode at t0 + T differs from the start mode (" +
-                std::to_string(run.events.size()) +
-                " events in the period): an event at the period start (the orbit starts on a "
-                "switching surface: start it from another t0, away from its events; "
-                "Continuation does so with ContinuationOptions::section_margin > 0), or the "
-                "response is not periodic with this period";
-  }
+  o.status = ShootingStatus::Converged;
   return o;
 }
 
