@@ -1963,6 +1963,7 @@ void bind_impulse(py::module_& m);  // impulse_bindings.cpp: impact options of t
 void bind_assembler(py::module_& m);  // assembler_bindings.cpp: body contacts as the paper's damper
 void bind_disk(py::module_& m);  // disk_bindings.cpp: bladed disks, travelling waves, mistuning
 void bind_branches(py::module_& m);  // branch_bindings.cpp: bifurcations and branch switching
+void bind_hybrid(py::module_& m);  // hybrid_bindings.cpp: hybrid systems written in Python
 
 PYBIND11_MODULE(stickslip, m) {
   m.doc() = "stickslip: dynamics of beam frames damped by dry friction (docs/python.md)";
@@ -1981,4 +1982,5 @@ PYBIND11_MODULE(stickslip, m) {
   bind_assembler(m);
   bind_disk(m);
   bind_branches(m);
+  bind_hybrid(m);
 }
