@@ -1012,6 +1012,21 @@ void bind_contacts(py::module_& m) {
           py::arg("point_a"), py::arg("point_b"), py::arg("direction"), py::arg("law"), py::arg("N"),
           "A friction joint: `point_a` rubs on `point_b` (another point, e.g. of another member) along the unit "
           "`direction` with `law` under the normal force N [N] > 0.")
+      .def_static(
+          "with_row",
+          [](std::function<Eigen::VectorXd(const FrameModel<double>&, const ModalBasis<double>&)> row,
+             const py::object& law, double N) {
+            detail::require_positive("PointContact.with_row", "N", N);
+            if (!row) throw std::invalid_argument("PointContact.with_row: row must be a callable row(frame, basis)");
+            return Contact::with_row(std::move(row), to_law(law, "PointContact.with_row"), N);
+          },
+          py::arg("row"), py::arg("law"), py::arg("N"),
+          "A contact of one's own relation on the same modes: s = w . q with w = row(frame, basis) (one finite value "
+          "per retained mode, e.g. basis.nodal(node, Dof.Rz) differences for a rotational hinge; called once "
+          "when the ContactSystem is built), with `law` under the normal force N [N] > 0; a, b, direction are not "
+          "read (docs/contacts.md, \"A relation of one's own\").")
+      .def_property_readonly("has_row", [](const Contact& c) { return static_cast<bool>(c.row); },
+                             "whether the relation is a row(frame, basis) of one's own (with_row)")
       .def_readwrite("a", &Contact::a, "the sliding side (a StructurePoint)")
       .def_readwrite("b", &Contact::b, "the other side: a StructurePoint, or None for ground")
       .def_readwrite("direction", &Contact::direction, "tangential unit direction d (global)")

@@ -247,24 +247,69 @@ TEST(GroundedSlider, SlipsFirstWhereTheStuckReactionReachesMuSN) {
   }
 }
 
-// Stuck with a friction limit far above the load (all modes retained): the slider pins its
-// node, and a free vibration in a mode of the frame with that DOF fixed stands as cos(w t).
-TEST(GroundedSlider, FarAboveTheLoadItPinsItsNodeAsTheFrameWithTheDofFixed) {
+/// A cantilever of 4 elements (all modes retained) whose DOF `dof` at its third node is held by
+/// the contact make(node) with a friction limit far above the load: free vibrations in the first
+/// two modes of the frame with that DOF fixed (independent eigen solve) stand as cos(w t), and
+/// the contact never slips.
+template <class MakeContact>
+void expect_pins_dof(Dof dof, MakeContact make) {
   Cantilever c(4);
   const auto fe = c.frame.assemble();
   const auto basis = modes_of(c.frame, fe.dofs.num_free());
   const NodeId node = c.frame.member(c.member).nodes[2];
-  const TiedModes tied = tied_modes(fe, fe.dofs.free_index(node, Dof::X), -1);
-  std::vector<PointContact<double>> contacts{PointContact<double>::grounded(
-      {c.member, c.length / 2}, PlaneDirection<double>::global_x(), CoulombLaw<double>(0.3, 0.3), 1e12)};
-  System sys(c.frame, basis, contacts);
+  const TiedModes tied = tied_modes(fe, fe.dofs.free_index(node, dof), -1);
+  System sys(c.frame, basis, {make(c, node)});
+  EXPECT_EQ(sys.contact_row(0), Vector(basis.nodal(node, dof).transpose()));
   const Matrix M(fe.mass);
   const Vector probe = basis.nodal(c.tip, Dof::X).transpose();
-  for (int k : {0, 1}) {  // the first two tied modes
+  for (int k : {0, 1}) {
     const Vector q0 = basis.phi().transpose() * M * tied.u.col(k) * (1e-3 / tied.u.col(k).cwiseAbs().maxCoeff());
     expect_standing_mode(sys, q0, tied.omega(k), probe, 3);
     EXPECT_TRUE(sys.events().empty());
   }
+}
+
+// Stuck with a friction limit far above the load: the slider at mid-span pins its node's X.
+TEST(GroundedSlider, FarAboveTheLoadItPinsItsNodeAsTheFrameWithTheDofFixed) {
+  expect_pins_dof(Dof::X, [](const Cantilever& c, NodeId) {
+    return PointContact<double>::grounded({c.member, c.length / 2}, PlaneDirection<double>::global_x(),
+                                          CoulombLaw<double>(0.3, 0.3), 1e12);
+  });
+}
+
+// A relation of one's own (PointContact::with_row): a rotational friction hinge to ground at the
+// node, w = the node's rotation row, pins the rotation.
+TEST(RowContact, RotationalHingeFarAboveTheLoadPinsTheRotationAsTheFrameWithTheDofFixed) {
+  expect_pins_dof(Dof::Rz, [](const Cantilever&, NodeId node) {
+    return PointContact<double>::with_row(
+        [node](const FrameModel<double>&, const ModalBasis<double>& b) { return Vector(b.nodal(node, Dof::Rz).transpose()); },
+        CoulombLaw<double>(0.3, 0.3), 1e12);
+  });
+}
+
+// The same relation as a grounded slider at a node, given as a row: the same run, bit for bit.
+TEST(RowContact, ANodesRowGivenAsARowRunsAsTheGroundedSliderThere) {
+  const SliderScene s;
+  const auto point = s.system(0.5 * std::abs(stuck_response(s.basis, s.w, s.phiF, s.F0, s.W).L));
+  auto contacts = point.contacts();
+  const Vector w = point.contact_row(0);
+  contacts[0] = PointContact<double>::with_row([w](const FrameModel<double>&, const ModalBasis<double>&) { return w; },
+                                               contacts[0].friction, contacts[0].normal.value);
+  System as_row(s.c.frame, s.basis, contacts, point.loads());
+  System as_point = point;
+  const double T = 2 * kPi / s.W;
+  auto run = [&](System& sys) {
+    State x = sys.initial_state();
+    auto mode = sys.requested_mode();
+    Samples rec;
+    auto result = simulate(sys, mode, 0.0, x, 3 * T, tight(T / 40), rec);
+    EXPECT_EQ(result.status, Status::Success) << result.message;
+    return std::make_pair(result.x, sys.events().size());
+  };
+  const auto a = run(as_point), b = run(as_row);
+  EXPECT_GT(a.second, 2u);
+  EXPECT_EQ(a.second, b.second);
+  EXPECT_EQ(a.first, b.first);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -377,6 +422,13 @@ TEST(ContactSystemInputs, BadContactsAreRefusedNamingTheParameter) {
   bad = PointContact<double>::joint({c.member, 0.1}, {c.member, 0.1}, PlaneDirection<double>::global_x(),
                                     CoulombLaw<double>(0.3, 0.3), 1.0);
   expect_refused(bad, "side b");
+  const auto rows = [](Eigen::Index n, double value) {
+    return [n, value](const FrameModel<double>&, const ModalBasis<double>&) { return Vector(Vector::Constant(n, value)); };
+  };
+  expect_refused(PointContact<double>::with_row(rows(3, 1.0), CoulombLaw<double>(0.3, 0.3), 1.0),
+                 "row must return one value per retained mode");
+  expect_refused(PointContact<double>::with_row(rows(4, std::nan("")), CoulombLaw<double>(0.3, 0.3), 1.0),
+                 "row must return finite values");
 }
 
 }  // namespace contact_system_test

@@ -1,8 +1,12 @@
-"""Hybrid systems written in Python (docs/python_hybrid.md): HybridSystem, HybridStepper and
-find_periodic_orbit on a user's own rhs, guards and transitions, checked against closed forms:
-the harmonic oscillator, the bouncing ball's impact times, the belt stick-slip cycle's event
-times, period and multipliers, and the forced damped oscillator's receptance and Floquet
-multipliers; bad input and failing user code are reported, never lost."""
+"""Systems and relations of one's own, from Python.
+
+Hybrid systems (docs/python_hybrid.md): HybridSystem, HybridStepper and find_periodic_orbit on a
+user's own rhs, guards and transitions, checked against closed forms: the harmonic oscillator, the
+bouncing ball's impact times, the belt stick-slip cycle's event times, period and multipliers,
+and the forced damped oscillator's receptance and Floquet multipliers; bad input and failing user
+code are reported, never lost. Contacts with a relation of one's own (PointContact.with_row,
+docs/contacts.md): a rotational friction hinge's stuck orbit and first slip against the
+constrained linear solve by numpy."""
 import cmath
 import math
 
@@ -261,3 +265,88 @@ def test_bad_systems_options_and_user_errors_are_reported():
         ss.find_periodic_orbit(ss.HybridSystem(Oscillator(1.0)), 1.0, np.zeros(2), monodromy="exact")
     with pytest.raises(ValueError, match="t0 must be 0"):
         ss.find_periodic_orbit(ss.HybridSystem(Oscillator(1.0)), 1.0, np.zeros(2), t0=1.0, autonomous=True)
+
+
+def hinge_scene(limit):
+    """A clamped cantilever (20 elements, 4 modes, 1 % modal damping) forced at its tip along X,
+    with a rotational friction hinge to ground at mid-span: a relation of one's own, w = the
+    rotation's modal row (PointContact.with_row), with a Coulomb limit mu_s N = limit [N m]."""
+    f = ss.FrameModel()
+    root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
+    beam = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 20)
+    f.clamp(root)
+    basis = ss.compute_modes(f, num_modes=4).with_modal_damping(np.full(4, 0.01))
+    mid = f.member_nodes(beam)[10]
+    hinge = ss.PointContact.with_row(lambda frame, b: b.nodal(mid, ss.Dof.Rz), ss.CoulombLaw(1.0, 0.8), limit)
+    load = ss.PointLoad.harmonic(beam, 0.2, ss.LoadDirection.GlobalX, 2.0, 300.0)
+    return ss.ContactSystem(f, basis, [hinge], [load]), basis, basis.nodal(mid, ss.Dof.Rz), basis.nodal(tip, ss.Dof.X)
+
+
+def test_contact_of_ones_own_row_stuck_orbit_and_first_slip_are_the_constrained_closed_form():
+    """The stuck hinge's steady state is the linear system constrained by w . q = 0, solved here by
+    numpy ([K - W^2 + i W C, -w; w^T, 0] [Q; L] = [F; 0], q = Im(Q e^{iWt}), the hinge's moment
+    f = Im(L e^{iWt})); with mu_s N above |L| the orbit never slips, with mu_s N = 0.8 |L| a run
+    from that state slips first where |L| |sin(W t + arg L)| reaches mu_s N."""
+    W, amplitude = 300.0, 2.0
+    system, basis, w, phi = hinge_scene(1.0)
+    n = basis.size()
+    assert system.num_contacts() == 1 and system.contacts()[0].has_row
+    np.testing.assert_array_equal(system.contact_row(0), w)
+    A = np.zeros((n + 1, n + 1), complex)
+    A[:n, :n] = np.diag(basis.omega() ** 2 - W ** 2 + 1j * W * basis.damping_coefficients())
+    A[:n, n], A[n, :n] = -w, w
+    sol = np.linalg.solve(A, np.concatenate([amplitude * phi, [0.0]]))
+    Q, L = sol[:n], sol[n]
+    x_stuck = np.concatenate([Q.imag, W * Q.real, np.zeros(system.state_size() - 2 * n)])
+
+    stuck, *_ = hinge_scene(1.5 * abs(L))
+    orbit = ss.find_periodic_orbit(stuck, 2 * math.pi / W, x0=np.zeros(stuck.state_size()))
+    assert orbit.ok, orbit.message
+    assert not orbit.events and orbit.stick_fractions[0] == 1.0
+    # A stuck hinge holds any static moment c within its limit: the stuck orbits are x_stuck plus
+    # the static deflection c u, u = K^-1 w (Newton's minimum-norm step picks one). Off that
+    # direction, and in the velocities, a linear solve on both sides agrees to the shooting
+    # tolerance (1e-9 of max(1, |x0|)).
+    u = w / basis.omega() ** 2
+    d = orbit.x0[:n] - x_stuck[:n]
+    c = d @ u / (u @ u)
+    tol = 1e-9
+    np.testing.assert_allclose(d - c * u, 0, rtol=0, atol=tol)
+    np.testing.assert_allclose(orbit.x0[n:2 * n], x_stuck[n:2 * n], rtol=0, atol=tol)
+    # c is the static moment the hinge holds (K c u = w c): stuck all period, |c| + |L| <= mu_s N = 1.5 |L|.
+    assert abs(c) <= 0.5 * abs(L)
+
+    slipping, *_ = hinge_scene(0.8 * abs(L))
+    run = ss.simulate(slipping, 2 * math.pi / W, ss.RunOptions("dopri5", rtol=1e-10, atol=1e-14), x0=x_stuck)
+    assert run.ok, run.message
+    events = slipping.events()
+    assert events and events[0].from_state == ss.ContactState.Stick
+    phase = np.angle(L)
+    t = np.linspace(0, 2 * math.pi / W, 200001)
+    first = t[np.argmax(abs(L) * np.abs(np.sin(W * t + phase)) >= 0.8 * abs(L))]
+    # The closed form's crossing on a grid of 1e-7 s; the event is located to 1e-12 s on the run.
+    assert abs(events[0].t - first) < 2e-7
+
+
+def test_contact_of_ones_own_row_runs_as_the_same_point_contact_and_bad_rows_are_refused():
+    system, basis, w, phi = hinge_scene(0.05)
+    f = ss.FrameModel()
+    # The same relation through with_row and through grounded at the tip: the same run, bit for bit.
+    root, tip = f.add_node(0, 0), f.add_node(0, 0.2)
+    beam = f.add_member(root, tip, ss.SectionProperties(2.06e11, 7800, 6e-5, 2e-11), 20)
+    f.clamp(root)
+    b = ss.compute_modes(f, num_modes=4)
+    law = ss.CoulombLaw(0.35, 0.3)
+    load = [ss.PointLoad.harmonic(beam, 0.2, ss.LoadDirection.GlobalX, 2.0, 300.0)]
+    point = ss.PointContact.grounded(ss.StructurePoint(beam, 0.2), ss.PlaneDirection.global_x(), law, 0.5)
+    row = ss.PointContact.with_row(lambda frame, basis: basis.nodal(tip, ss.Dof.X), law, 0.5)
+    runs = [ss.simulate(ss.ContactSystem(f, b, [c], load), 0.05, ss.RunOptions("dopri5", rtol=1e-8)) for c in (point, row)]
+    assert runs[0].ok and runs[1].ok and len(runs[0].transitions) > 2
+    assert runs[0].x.tobytes() == runs[1].x.tobytes() and runs[0].t == runs[1].t
+
+    with pytest.raises(ValueError, match="row must return one value per retained mode"):
+        ss.ContactSystem(f, b, [ss.PointContact.with_row(lambda frame, basis: np.zeros(3), law, 0.5)], load)
+    with pytest.raises(ValueError, match="row must return finite values"):
+        ss.ContactSystem(f, b, [ss.PointContact.with_row(lambda frame, basis: np.full(4, math.nan), law, 0.5)], load)
+    with pytest.raises(ValueError, match="N"):
+        ss.PointContact.with_row(lambda frame, basis: np.zeros(4), law, 0.0)

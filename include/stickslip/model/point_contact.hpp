@@ -19,6 +19,7 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -49,6 +50,11 @@ struct PointContact {
   HeldNormal<Scalar> normal;                         ///< N(t) [N]
   /// Initial contact state (Stick: the sides start stuck; a slip state needs v != 0 at t0).
   ContactState initial_state = ContactState::Stick;
+  /// A relation of one's own on the same modes: when set, s = w . q with w = row(frame, basis)
+  /// (one finite value per retained mode), and `a`, `b`, `direction` are not read; e.g. a
+  /// rotational friction hinge between two members, w = the difference of their rotations' modal
+  /// rows (docs/contacts.md, "A relation of one's own").
+  std::function<Vector(const FrameModel<Scalar>&, const ModalBasis<Scalar>&)> row;
 
   /// A grounded slider: `point` rubs on ground along `direction` under normal force N.
   static PointContact grounded(StructurePoint<Scalar> point, PlaneDirection<Scalar> direction, Law law,
@@ -68,6 +74,16 @@ struct PointContact {
     return c;
   }
 
+  /// A contact whose relation s = w . q has the modal row w = row_function(frame, basis), with
+  /// `law` under the normal force N.
+  static PointContact with_row(std::function<Vector(const FrameModel<Scalar>&, const ModalBasis<Scalar>&)> row_function,
+                               Law law, Scalar N) {
+    PointContact c;
+    c.row = std::move(row_function);
+    c.friction = std::move(law);
+    c.normal.value = N;
+    return c;
+  }
   /// The friction law.
   const Law& law() const noexcept { return friction; }
   /// Normal force N(t) [N].
@@ -75,10 +91,20 @@ struct PointContact {
   /// The contact state at the start of a run.
   ContactState start_state() const noexcept { return initial_state; }
 
-  /// The constant modal row w of the relative tangential displacement, s = w . q.
+  /// The constant modal row w of the relative tangential displacement, s = w . q (row(frame,
+  /// basis) when set).
   /// \throws std::invalid_argument (naming `where`) for a side off the frame or a bad direction.
   Vector tangential_row(const FrameModel<Scalar>& frame, const ModalBasis<Scalar>& basis,
                         const std::string& where) const {
+    if (row) {
+      Vector w = row(frame, basis);
+      if (w.size() != basis.size())
+        detail::throw_invalid(where, "row must return one value per retained mode (" +
+                                         std::to_string(basis.size()) + "), size",
+                              w.size());
+      if (!w.allFinite()) throw std::invalid_argument(where + ": row must return finite values");
+      return w;
+    }
     Vector w = structure_point_row(frame, basis, a, direction, where + ": side a");
     if (b) {
       if (b->member == a.member && b->coordinate == a.coordinate)
