@@ -188,6 +188,21 @@ ShootingOptions<double> shooting_options(const Sys& system, const std::optional<
   return opt;
 }
 
+/// find_periodic_orbit's further ShootingOptions keywords (C++'s fields of the same names; the
+/// orbit runs' max_step and guard_samples are the StepperOptions fields): validated by Shooting.
+inline void set_orbit_details(ShootingOptions<double>& opt, int samples_per_period,
+                              const std::optional<std::vector<Index>>& amplitude_components,
+                              double multiplier_tolerance, double fd_step, bool control_sensitivities,
+                              double max_step, long guard_samples) {
+  opt.samples_per_period = samples_per_period;
+  if (amplitude_components) opt.amplitude_components = *amplitude_components;
+  opt.multiplier_tolerance = multiplier_tolerance;
+  opt.fd_step = fd_step;
+  opt.control_sensitivities = control_sensitivities;
+  opt.stepper.max_step = max_step;
+  opt.stepper.guard_samples = guard_samples;
+}
+
 /// The callables of a continuation (continue_orbits, PeriodDoubling, SymmetricBranches): ValueError
 /// naming `parameter` unless callable, `start_mode` unless None or callable, `period` unless
 /// callable or a float > 0 (TypeError when neither).

@@ -85,6 +85,7 @@ using stickslip_python::PyContinuationPoint;
 using stickslip_python::PyOrbit;
 using stickslip_python::set_outputs_and_progress;
 using stickslip_python::shooting_options;
+using stickslip_python::set_orbit_details;
 using stickslip_python::to_list;
 using stickslip_python::to_mode;
 using stickslip_python::to_py;
@@ -1607,11 +1608,15 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       [](Py& system, double period, double t0, std::optional<State> x0, std::optional<std::vector<ContactState>> mode,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance, int max_iterations,
          double rtol, double atol, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
-         const py::object& progress, OrbitIntegrator integrator) {
+         const py::object& progress, OrbitIntegrator integrator, int samples_per_period,
+         std::optional<std::vector<Index>> amplitude_components, double multiplier_tolerance, double fd_step,
+         bool control_sensitivities, double max_step, long guard_samples) {
         return with_system(system, [&](SignalCheck& signals) {
           ShootingOptions<double> opt = shooting_options(system, periodic, monodromy, tolerance, max_iterations, rtol,
                                                          atol, max_steps, integrator, "find_periodic_orbit");
           set_outputs_and_progress(opt, outputs, output_harmonics, progress, "find_periodic_orbit");
+          set_orbit_details(opt, samples_per_period, amplitude_components, multiplier_tolerance, fd_step,
+                            control_sensitivities, max_step, guard_samples);
           opt.interrupt = [&signals] { return signals(); };
           State x = x0 ? *x0 : system.initial_state();
           Mode md = mode ? to_mode(*mode) : system.requested_mode();
@@ -1625,7 +1630,10 @@ void def_find_periodic_orbit(py::module_& m, const char* doc) {
       py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
       py::arg("max_steps") = StepperOptions<double>{}.max_steps, py::arg("outputs") = py::none(),
       py::arg("output_harmonics") = 3, py::arg("progress") = py::none(),
-      py::arg("integrator") = OrbitIntegrator::DormandPrince54, doc);
+      py::arg("integrator") = OrbitIntegrator::DormandPrince54, py::arg("samples_per_period") = 256,
+      py::arg("amplitude_components") = py::none(), py::arg("multiplier_tolerance") = 1e-6, py::arg("fd_step") = 1e-6,
+      py::arg("control_sensitivities") = true, py::arg("max_step") = std::numeric_limits<double>::infinity(),
+      py::arg("guard_samples") = 0, doc);
 }
 
 /// continue_orbits for one system type (Py: PySystem, PyContactSystem or PyBodyContactSystem).
@@ -1747,6 +1755,56 @@ void def_continue_orbits(py::module_& m, const char* doc) {
       py::arg("integrator") = OrbitIntegrator::DormandPrince54, py::arg("wrap_section") = true, doc);
 }
 
+template <class Py>
+void def_poincare_sections(py::module_& m, const char* doc) {
+  using Sys = typename Py::Wrapped;
+  m.def(
+      "poincare_sections",
+      [](Py& system, double period, double t0, std::optional<State> x0,
+         std::optional<std::vector<ContactState>> mode, int transient_periods, int record_periods, int max_period,
+         double tolerance, std::optional<std::vector<Index>> periodic, double rtol, double atol, long max_steps) {
+        static const std::string where = "poincare_sections";
+        detail::require_positive(where, "period", period);
+        return with_system(system, [&](SignalCheck& signals) {
+          PoincareOptions<double> opt;
+          opt.transient_periods = transient_periods;
+          opt.record_periods = record_periods;
+          opt.max_period = max_period;
+          opt.tolerance = tolerance;
+          opt.periodic = periodic_set(system, periodic, where);
+          opt.stepper.rtol = rtol;
+          opt.stepper.atol = atol;
+          opt.stepper.max_steps = checked_max_steps(max_steps, where);
+          opt.interrupt = [&signals] { return signals(); };
+          check_section_memory(where, record_periods, system.state_size());
+          if (max_period >= 1 && 2LL * max_period > record_periods)
+            detail::throw_invalid(where,
+                                  "max_period must be <= record_periods / 2 = " + std::to_string(record_periods / 2) +
+                                      " (a period k is told from a record of at least 2k sections)",
+                                  max_period);
+          const State x = x0 ? *x0 : system.initial_state();
+          const Mode md = mode ? to_mode(*mode) : system.requested_mode();
+          check_start(system, md, x, where);
+          PyPoincare out;
+          const auto r = poincare_sections(static_cast<Sys&>(system), md, t0, x, period, opt);
+          out.status = r.status;
+          out.message = r.message;
+          out.period = r.period;
+          out.recurrence = Eigen::Map<const Eigen::VectorXd>(r.recurrence.data(), static_cast<Index>(r.recurrence.size()));
+          out.t0 = r.t0;
+          out.period_time = r.period_time;
+          out.states.resize(static_cast<Index>(r.states.size()), x.size());
+          for (std::size_t n = 0; n < r.states.size(); ++n) out.states.row(static_cast<Index>(n)) = r.states[n].transpose();
+          for (const Mode& mn : r.modes) out.modes.push_back(to_list(mn));
+          return out;
+        });
+      },
+      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
+      py::arg("transient_periods") = 100, py::arg("record_periods") = 32, py::arg("max_period") = 8,
+      py::arg("tolerance") = PoincareOptions<double>{}.tolerance, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps, doc);
+}
+
 void bind_steady_state(py::module_& m) {
   py::enum_<ShootingStatus>(m, "ShootingStatus", "How find_periodic_orbit ended (PeriodicOrbit.status).")
       .value("Converged", ShootingStatus::Converged, "a periodic orbit to the tolerance, its mode sequence closes")
@@ -1803,7 +1861,13 @@ void bind_steady_state(py::module_& m) {
       "whose y = c . x the orbit reports over its period (PeriodicOrbit.outputs, output_harmonics harmonics); "
       "progress(report): called after every Newton iteration with a ShootingProgress (residual, CPU seconds, an "
       "estimate of those left). A failure's message names what stalled Newton and the option that addresses it. "
-      "integrator: the OrbitIntegrator of the runs (Exponential: exact in linear modes, for stiff structures).");
+      "integrator: the OrbitIntegrator of the runs (Exponential: exact in linear modes, for stiff structures). "
+      "C++'s other ShootingOptions fields: samples_per_period (dense-output samples a period for amplitudes and "
+      "outputs, default 256), amplitude_components (the components whose max |x_i| is reported; default the "
+      "periodic ones), multiplier_tolerance (|mu| > 1 + it is unstable, default 1e-6), fd_step (relative step of "
+      "the finite differences, default 1e-6), control_sensitivities (the variational monodromy under the step "
+      "control, default True); and the orbit runs' max_step [s] (default inf) and guard_samples (default 0): set "
+      "them when a guard can cross and cross back inside one step.");
   def_find_periodic_orbit<PyContactSystem>(
       m,
       "A ContactSystem's forced periodic orbit, as above; the default periodic components are q, q' (the first "
@@ -1915,51 +1979,8 @@ void bind_steady_state(py::module_& m) {
       .def_readonly("period_time", &PyPoincare::period_time, "the forcing period T")
       .def_readonly("states", &PyPoincare::states, "the sections x(t0 + nT), one row per n")
       .def_readonly("modes", &PyPoincare::modes, "the contact states at each section");
-  m.def(
-      "poincare_sections",
-      [](PySystem& system, double period, double t0, std::optional<State> x0,
-         std::optional<std::vector<ContactState>> mode, int transient_periods, int record_periods, int max_period,
-         double tolerance, std::optional<std::vector<Index>> periodic, double rtol, double atol, long max_steps) {
-        static const std::string where = "poincare_sections";
-        detail::require_positive(where, "period", period);
-        return with_system(system, [&](SignalCheck& signals) {
-          PoincareOptions<double> opt;
-          opt.transient_periods = transient_periods;
-          opt.record_periods = record_periods;
-          opt.max_period = max_period;
-          opt.tolerance = tolerance;
-          opt.periodic = periodic_set(system, periodic, where);
-          opt.stepper.rtol = rtol;
-          opt.stepper.atol = atol;
-          opt.stepper.max_steps = checked_max_steps(max_steps, where);
-          opt.interrupt = [&signals] { return signals(); };
-          check_section_memory(where, record_periods, system.state_size());
-          if (max_period >= 1 && 2LL * max_period > record_periods)
-            detail::throw_invalid(where,
-                                  "max_period must be <= record_periods / 2 = " + std::to_string(record_periods / 2) +
-                                      " (a period k is told from a record of at least 2k sections)",
-                                  max_period);
-          const State x = x0 ? *x0 : system.initial_state();
-          const Mode md = mode ? to_mode(*mode) : system.requested_mode();
-          check_start(system, md, x, where);
-          PyPoincare out;
-          const auto r = poincare_sections(static_cast<System&>(system), md, t0, x, period, opt);
-          out.status = r.status;
-          out.message = r.message;
-          out.period = r.period;
-          out.recurrence = Eigen::Map<const Eigen::VectorXd>(r.recurrence.data(), static_cast<Index>(r.recurrence.size()));
-          out.t0 = r.t0;
-          out.period_time = r.period_time;
-          out.states.resize(static_cast<Index>(r.states.size()), x.size());
-          for (std::size_t n = 0; n < r.states.size(); ++n) out.states.row(static_cast<Index>(n)) = r.states[n].transpose();
-          for (const Mode& mn : r.modes) out.modes.push_back(to_list(mn));
-          return out;
-        });
-      },
-      py::arg("system"), py::arg("period"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("mode") = py::none(),
-      py::arg("transient_periods") = 100, py::arg("record_periods") = 32, py::arg("max_period") = 8,
-      py::arg("tolerance") = PoincareOptions<double>{}.tolerance, py::arg("periodic") = py::none(), py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
-      py::arg("max_steps") = StepperOptions<double>{}.max_steps,
+  def_poincare_sections<PySystem>(
+      m,
       "Poincaré sections of the forced response from (mode, t0, x0) (default: the system's initial state): "
       "transient_periods whole periods, then the state at the next record_periods multiples of `period`, and the "
       "smallest k <= max_period with which they repeat to `tolerance` / 10 (relative, over the components "
@@ -1969,6 +1990,10 @@ void bind_steady_state(py::module_& m) {
       "docs/steady_state.md). record_periods is bounded by the record's memory (record_periods x state_size x 16 "
       "bytes <= 1 GiB); max_steps: step attempts allowed per period's run. The GIL is released; Ctrl-C stops the "
       "call (KeyboardInterrupt).");
+  def_poincare_sections<PyContactSystem>(m, "A ContactSystem's Poincaré sections, as above; periodic defaults to q, q'.");
+  def_poincare_sections<PyBodyContactSystem>(
+      m, "A BodyContactSystem's Poincaré sections, as above; periodic defaults to z, z' (q and the bodies' coordinates).");
+  def_poincare_sections<PyMixedContactSystem>(m, "A MixedContactSystem's Poincaré sections, as above.");
 }
 
 }  // namespace

@@ -6,7 +6,8 @@ bouncing ball's impact times, the belt stick-slip cycle's event times, period an
 and the forced damped oscillator's receptance and Floquet multipliers; bad input and failing user
 code are reported, never lost. Contacts with a relation of one's own (PointContact.with_row,
 docs/contacts.md): a rotational friction hinge's stuck orbit and first slip against the
-constrained linear solve by numpy."""
+constrained linear solve by numpy, and on it poincare_sections of a ContactSystem and
+find_periodic_orbit's further ShootingOptions keywords."""
 import cmath
 import math
 
@@ -350,3 +351,43 @@ def test_contact_of_ones_own_row_runs_as_the_same_point_contact_and_bad_rows_are
         ss.ContactSystem(f, b, [ss.PointContact.with_row(lambda frame, basis: np.full(4, math.nan), law, 0.5)], load)
     with pytest.raises(ValueError, match="N"):
         ss.PointContact.with_row(lambda frame, basis: np.zeros(4), law, 0.0)
+
+
+def test_contact_system_sections_and_orbit_details_reach_the_constrained_closed_form():
+    """poincare_sections on a ContactSystem and find_periodic_orbit's further ShootingOptions
+    keywords, on the stuck hinge whose steady state numpy solves (as above)."""
+    W, amplitude = 300.0, 2.0
+    system, basis, w, phi = hinge_scene(1.0)
+    n = basis.size()
+    A = np.zeros((n + 1, n + 1), complex)
+    A[:n, :n] = np.diag(basis.omega() ** 2 - W ** 2 + 1j * W * basis.damping_coefficients())
+    A[:n, n], A[n, :n] = -w, w
+    sol = np.linalg.solve(A, np.concatenate([amplitude * phi, [0.0]]))
+    Q, L = sol[:n], sol[n]
+    stuck, *_ = hinge_scene(1.5 * abs(L))
+    x_stuck = np.concatenate([Q.imag, W * Q.real, np.zeros(stuck.state_size() - 2 * n)])
+    T = 2 * math.pi / W
+
+    # Started on the stuck steady state, a linear response: every section is that state (rtol
+    # 1e-10 runs: 1e-8 of its scale), and the verdict is period 1.
+    sections = ss.poincare_sections(stuck, T, x0=x_stuck, transient_periods=2, record_periods=8, max_period=4)
+    assert sections.periodic and sections.period == 1, sections.status
+    scale = np.abs(x_stuck[:2 * n]).max()
+    np.testing.assert_allclose(sections.states[:, :2 * n], np.tile(x_stuck[:2 * n], (8, 1)), rtol=0, atol=1e-8 * scale)
+
+    # amplitudes of the chosen components from samples_per_period samples of the orbit: within
+    # 1 - cos(pi / samples) of the modal amplitudes |Q_i| (the stuck orbit carries no static moment
+    # here: it is started on x_stuck).
+    for samples, tol in ((256, 1e-4), (4096, 1e-6)):
+        orbit = ss.find_periodic_orbit(stuck, T, x0=x_stuck, samples_per_period=samples, amplitude_components=[0, 1])
+        assert orbit.ok, orbit.message
+        assert len(orbit.amplitudes) == 2
+        np.testing.assert_allclose(orbit.amplitudes, np.abs(Q[:2]), rtol=tol)
+    orbit = ss.find_periodic_orbit(stuck, T, x0=x_stuck, monodromy="finite_difference", fd_step=1e-5,
+                                   control_sensitivities=False, max_step=T / 20, guard_samples=2,
+                                   multiplier_tolerance=1e-3)
+    assert orbit.ok and orbit.stable, orbit.message
+    for keyword, value in (("fd_step", 0.5), ("max_step", 0.0), ("guard_samples", -1), ("samples_per_period", -1),
+                           ("multiplier_tolerance", -1.0), ("amplitude_components", [99])):
+        with pytest.raises(ValueError, match=keyword):
+            ss.find_periodic_orbit(stuck, T, x0=x_stuck, **{keyword: value})
