@@ -208,7 +208,7 @@ int main(int argc, char** argv) try {
   wave.shooting.stepper.atol = 1e-11;
   const std::vector<double> omegas = grid(lo, hi, cli.points);
   std::ofstream frc(fs::path(cli.out) / "frc.csv");
-  frc << "preload,omega,ok,tip,stable,max_multiplier,runs,events,seconds\n";
+  frc << "preload,omega,ok,tip,stable,max_multiplier,runs,events,seconds,settled_periods\n";
   std::ostringstream curves;
   const auto frc_start = std::chrono::steady_clock::now();
   for (std::size_t c = 0; c < cli.preloads.size(); ++c) {
@@ -237,11 +237,12 @@ int main(int argc, char** argv) try {
       ++done;
       frc << N0 << ',' << pt.omega << ',' << (pt.orbit.ok() ? 1 : 0) << ',' << a << ','
           << (pt.orbit.floquet.stable ? 1 : 0) << ',' << pt.orbit.floquet.max_modulus << ',' << pt.orbit.iterations
-          << ',' << pt.orbit.events.size() << ',' << seconds_since(t0) << '\n';
-      std::printf("  N0 = %g N: %zu/%zu  Omega %.2f rad/s  %s  tip %.4g m  |mu|max %.4f  %d runs  %zu events  "
+          << ',' << pt.orbit.events.size() << ',' << seconds_since(t0) << ',' << pt.orbit.settled_periods << '\n';
+      std::printf("  N0 = %g N: %zu/%zu  Omega %.2f rad/s  %s  tip %.4g m  |mu|max %.4f  %d runs  %zu events%s  "
                   "(%.1f s)\n",
                   N0, done, omegas.size(), pt.omega, pt.orbit.ok() ? "ok" : "FAILED", a, pt.orbit.floquet.max_modulus,
-                  pt.orbit.iterations, pt.orbit.events.size(), seconds_since(t0));
+                  pt.orbit.iterations, pt.orbit.events.size(),
+                  pt.orbit.settled_periods ? "  (Newton from a settled transient)" : "", seconds_since(t0));
       if (!pt.orbit.ok()) std::printf("    %s\n", pt.orbit.message.c_str());
       std::fflush(stdout);
     };

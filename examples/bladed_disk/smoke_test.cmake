@@ -24,7 +24,7 @@ foreach(csv frc linear mistuning)
     message(FATAL_ERROR "${OUT}/${csv}.csv has ${n} lines (a header and at least one row expected)")
   endif()
 endforeach()
-# frc.csv: preload,omega,ok,tip,stable,max_multiplier,runs,events,seconds
+# frc.csv: preload,omega,ok,tip,stable,max_multiplier,runs,events,seconds,settled_periods
 file(STRINGS "${OUT}/frc.csv" rows)
 list(REMOVE_AT rows 0)
 foreach(row IN LISTS rows)

@@ -56,9 +56,12 @@ FrictionLawVariant<double> law_of(const py::handle& law, const char* where) {
 
 /// TravellingWaveOptions from the keyword arguments of the Python calls.
 TravellingWaveOptions<double> wave_options(double tolerance, int max_iterations, double rtol, double atol,
-                                           bool full_annulus_check, int mode_retries) {
+                                           bool full_annulus_check, int mode_retries, int settle_periods,
+                                           int settle_after) {
   TravellingWaveOptions<double> o;
   o.mode_retries = mode_retries;
+  o.settle_periods = settle_periods;
+  o.settle_after = settle_after;
   o.shooting.tolerance = tolerance;
   o.shooting.max_iterations = max_iterations;
   o.shooting.stepper.rtol = rtol;
@@ -97,6 +100,8 @@ void bind_orbit(py::module_& m) {
       .def_readonly("x0", &Orbit::x0, "the orbit's state at t0 (numpy)")
       .def_readonly("residual", &Orbit::residual, "max |x_P(t0 + tau) - (S x0)_P|")
       .def_readonly("iterations", &Orbit::iterations, "runs over tau made")
+      .def_readonly("settled_periods", &Orbit::settled_periods,
+                    "forcing periods of the settling transient the solve started from (0: from the guess)")
       .def_readonly("amplitudes", &Orbit::amplitudes, "max |x_i| over [t0, t0 + tau] of the amplitude components")
       .def_readonly("shift_map", &Orbit::shift_map, "A = S_PP^T M_PP(tau), the linearised map of one shift")
       .def_property_readonly("max_multiplier", [](const Orbit& o) { return o.floquet.max_modulus; },
@@ -293,8 +298,9 @@ void bind_disk(py::module_& m) {
       "travelling_wave",
       [](PyContactSystem& system, const Shift& shift, const std::vector<ContactState>& mode, double t0,
          const CSystem::State& x0, double period, double tolerance, int max_iterations, double rtol, double atol,
-         bool full_annulus_check, int mode_retries) {
-        const auto opt = wave_options(tolerance, max_iterations, rtol, atol, full_annulus_check, mode_retries);
+         bool full_annulus_check, int mode_retries, int settle_periods, int settle_after) {
+        const auto opt = wave_options(tolerance, max_iterations, rtol, atol, full_annulus_check, mode_retries,
+                                      settle_periods, settle_after);
         return with_system(system, [&](SignalCheck&) {
           TravellingWaveShooting<CSystem> tw(system, shift, opt);
           return tw.solve(mode_of(mode), t0, x0, period);
@@ -302,16 +308,20 @@ void bind_disk(py::module_& m) {
       },
       py::arg("system"), py::arg("shift"), py::arg("mode"), py::arg("t0"), py::arg("x0"), py::arg("period"),
       py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-14,
-      py::arg("full_annulus_check") = false, py::arg("mode_retries") = 3,
+      py::arg("full_annulus_check") = false, py::arg("mode_retries") = 3, py::arg("settle_periods") = 40,
+      py::arg("settle_after") = 8,
       "The travelling-wave orbit x(t0 + tau) = S x(t0) of forcing period T through (mode, t0) from the guess x0 by "
       "Newton's method on runs over tau = T / L (TravellingWaveShooting); full_annulus_check also integrates it "
       "over T with its monodromy. mode_retries (>= 0): when the state closes but the start mode does not, Newton is "
-      "repeated from the mode the run ends in (shifted back), at most this many times.");
+      "repeated from the mode the run ends in (shifted back), at most this many times. settle_periods (>= 0): a "
+      "solve that still fails is repeated once from the end of a transient of that many forcing periods from the "
+      "guess (TravellingWaveOrbit.settled_periods; 0: never), after settle_after Newton iterations from the guess.");
   m.def(
       "travelling_wave_sweep",
       [](const py::function& make_system, const Disk& d, const ModalBasis<double>& basis, Index eo,
          const std::vector<double>& omegas, const std::vector<ContactState>& mode, const CSystem::State& guess,
-         double tolerance, int max_iterations, double rtol, double atol, int mode_retries) {
+         double tolerance, int max_iterations, double rtol, double atol, int mode_retries, int settle_periods,
+         int settle_after) {
         const std::function<CSystem(double)> make = [&make_system](double w) {
           py::gil_scoped_acquire gil;
           return CSystem(make_system(w).cast<const PyContactSystem&>());
@@ -319,7 +329,8 @@ void bind_disk(py::module_& m) {
         const std::function<Shift(const CSystem&)> shift = [&](const CSystem& s) {
           return travelling_wave_shift(d, basis, s, eo);
         };
-        const auto opt = wave_options(tolerance, max_iterations, rtol, atol, false, mode_retries);
+        const auto opt =
+            wave_options(tolerance, max_iterations, rtol, atol, false, mode_retries, settle_periods, settle_after);
         std::vector<TravellingWaveSweepPoint<CSystem>> points;
         {
           py::gil_scoped_release release;
@@ -331,9 +342,9 @@ void bind_disk(py::module_& m) {
       },
       py::arg("make_system"), py::arg("disk"), py::arg("basis"), py::arg("engine_order"), py::arg("omegas"),
       py::arg("mode"), py::arg("guess"), py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30,
-      py::arg("rtol") = 1e-10, py::arg("atol") = 1e-14, py::arg("mode_retries") = 3,
-      "Travelling waves at the frequencies omegas in order (t0 = 0): make_system(omega) builds the ContactSystem "
+      py::arg("rtol") = 1e-10, py::arg("atol") = 1e-14, py::arg("mode_retries") = 3, py::arg("settle_periods") = 40,
+      py::arg("settle_after") = 8, "Travelling waves at the frequencies omegas in order (t0 = 0): make_system(omega) builds the ContactSystem "
       "forced at omega; the first point starts from (mode, guess), the next from the secant through the last two "
-      "converged orbits; mode_retries as in travelling_wave. Returns [(omega, TravellingWaveOrbit)].");
+      "converged orbits; mode_retries, settle_periods and settle_after as in travelling_wave. Returns [(omega, TravellingWaveOrbit)].");
   bind_mistuning(m);
 }

@@ -103,6 +103,13 @@ def test_linear_travelling_wave_is_the_closed_form_receptance():
     assert again.ok and np.array_equal(again.x0, orbit.x0)
     with pytest.raises(ValueError, match="mode_retries"):
         ss.travelling_wave(system, shift, [], 0.0, x0, T, mode_retries=-1)
+    # settle_periods reaches it too: converged from the guess, the orbit started there (0 periods);
+    # a negative count is refused naming it.
+    assert orbit.settled_periods == 0
+    with pytest.raises(ValueError, match="settle_periods"):
+        ss.travelling_wave(system, shift, [], 0.0, x0, T, settle_periods=-1)
+    with pytest.raises(ValueError, match="settle_after"):
+        ss.travelling_wave(system, shift, [], 0.0, x0, T, settle_after=0)
 
 
 def test_sweep_follows_the_receptance_and_mistuning_of_zero_gives_amplification_one():

@@ -104,6 +104,18 @@ struct TravellingWaveOptions {
   /// How often solve() repeats a solve whose state closes but whose start mode the orbit does not
   /// reproduce, from the mode the run ends in shifted back (>= 0; 0: report ModeNotPeriodic).
   int mode_retries = 3;
+  /// When Newton from the guess fails (no convergence, a singular matrix, a start mode the orbit
+  /// does not reproduce), the annulus is integrated this many forcing periods from the guess, a
+  /// transient toward the response that attracts it (about settle_periods L runs over tau
+  /// without sensitivities), and the solve repeated from where it ends, at t0 again (the
+  /// engine-order forcing is T-periodic). Far from the orbit (the stuck closed form under a
+  /// preload the dampers slip at) Newton's steps cross stick-slip boundaries and stall where a
+  /// short transient lands close enough for it. 0: never (>= 0).
+  int settle_periods = 40;
+  /// With settle_periods > 0: the Newton iterations from the guess before the settling transient
+  /// is tried (a Newton that needs more is crossing stick-slip boundaries, not converging); the
+  /// solve after it has shooting.max_iterations (>= 1).
+  int settle_after = 8;
 };
 
 /// Which Floquet analysis a travelling-wave orbit carries.
@@ -130,6 +142,9 @@ struct TravellingWaveOrbit {
   State x0;                     ///< the orbit's state at t0
   Scalar residual = 0;          ///< max |x_P(t0 + tau) - (S x0)_P|
   int iterations = 0;           ///< runs over tau made (Newton iterations and backtracking trials)
+  /// Forcing periods of the settling transient (options.settle_periods) the last solve started
+  /// from; 0: it started from the guess.
+  int settled_periods = 0;
   /// A = S_PP^T dx_P(t0 + tau)/dx_P(t0) (S orthogonal): the linearised map of one shift.
   Matrix shift_map;
   /// Eigenvalues of A. The full-period multipliers are omega_j lambda_j^L with omega_j roots of
@@ -190,6 +205,10 @@ class TravellingWaveShooting {
     if (opt_.shooting.periodic.empty()) opt_.shooting.periodic = ShootingOptions<Scalar>::first(2 * system.num_coordinates());
     opt_.shooting.validate(where, n);
     if (opt_.mode_retries < 0) detail::throw_invalid(where, "options.mode_retries must be >= 0; mode_retries", opt_.mode_retries);
+    if (opt_.settle_periods < 0)
+      detail::throw_invalid(where, "options.settle_periods must be >= 0; settle_periods", opt_.settle_periods);
+    if (opt_.settle_after < 1)
+      detail::throw_invalid(where, "options.settle_after must be >= 1; settle_after", opt_.settle_after);
   }
 
   /// The options in use (periodic filled in).
@@ -204,11 +223,17 @@ class TravellingWaveShooting {
   /// A start mode that the converged state does not reproduce (x(t0 + tau) = S x(t0) but the
   /// mode at t0 + tau is not S mode: the guess's stick/slip pattern was not the orbit's) is
   /// replaced by the one the run ends in, shifted back (S^-1 mode(t0 + tau)), and the solve
-  /// repeated from the converged state, at most options().mode_retries times.
+  /// repeated from the converged state, at most options().mode_retries times. A solve that still
+  /// fails (not by a failed run; after options().settle_after iterations when settling is on) is
+  /// repeated once from the end of a settling transient of options().settle_periods periods from
+  /// the guess (orbit.settled_periods says so).
   Orbit solve(const Mode& mode, Scalar t0, const State& x0, Scalar period);
 
  private:
-  Orbit solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period, Scalar tau);
+  // Newton in `mode` (and its retries) with at most max_iterations iterations.
+  Orbit solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period, Scalar tau, int max_iterations);
+  Orbit solve_with_retries(const Mode& mode, Scalar t0, const State& x0, Scalar period, Scalar tau,
+                           int max_iterations);
 
   void require_symmetry(const Mode& mode, Scalar t0, const State& x0, Scalar tau);
   Scalar residual(const State& x_end, const State& x0, Vector& r) const {
@@ -300,13 +325,35 @@ auto TravellingWaveShooting<System>::solve(const Mode& mode, Scalar t0, const St
   const Scalar tau = period / Scalar(shift_.symmetry.shifts_per_period);
   detail::require_resolved_period(where, "period", t0, tau, opt_.shooting.stepper);
   require_symmetry(mode, t0, x0, tau);
-  Orbit o = solve_in_mode(mode, t0, x0, period, tau);
+  const int all = opt_.shooting.max_iterations;
+  Orbit o = solve_with_retries(mode, t0, x0, period, tau, opt_.settle_periods > 0 ? std::min(all, opt_.settle_after) : all);
+  if (o.ok() || opt_.settle_periods == 0 || o.status == ShootingStatus::IntegrationFailed) return o;
+  const int k = opt_.settle_periods;
+  const PeriodRun<System> settle = run_period(sys_, mode, t0, x0, Scalar(k) * period, opt_.shooting, false);
+  if (!settle.ok()) {
+    o.message += " (a settling run of " + std::to_string(k) + " periods from the guess failed too (" +
+                 to_string(settle.status) + "): " + settle.message + ")";
+    return o;
+  }
+  const int runs = o.iterations;
+  const std::string from_guess = o.message;
+  o = solve_with_retries(settle.mode_end, t0, settle.x_end, period, tau, all);
+  o.iterations += runs;
+  o.settled_periods = k;
+  if (!o.ok()) o.message += " (after settling " + std::to_string(k) + " periods; from the guess: " + from_guess + ")";
+  return o;
+}
+
+template <class System>
+auto TravellingWaveShooting<System>::solve_with_retries(const Mode& mode, Scalar t0, const State& x0, Scalar period,
+                                                        Scalar tau, int max_iterations) -> Orbit {
+  Orbit o = solve_in_mode(mode, t0, x0, period, tau, max_iterations);
   for (int retry = 0; retry < opt_.mode_retries && o.status == ShootingStatus::ModeNotPeriodic; ++retry) {
     const Mode next = shift_.unshifted(o.events.empty() ? o.mode : o.events.back().to);  // S^-1 (end mode)
     if (next == o.mode) break;
     const int runs = o.iterations;
     const std::string before = o.message;
-    o = solve_in_mode(next, t0, o.x0, period, tau);
+    o = solve_in_mode(next, t0, o.x0, period, tau, max_iterations);
     o.iterations += runs;
     if (o.status == ShootingStatus::ModeNotPeriodic) o.message += " (after a retry from: " + before + ")";
   }
@@ -315,7 +362,7 @@ auto TravellingWaveShooting<System>::solve(const Mode& mode, Scalar t0, const St
 
 template <class System>
 auto TravellingWaveShooting<System>::solve_in_mode(const Mode& mode, Scalar t0, const State& x0, Scalar period,
-                                                   Scalar tau) -> Orbit {
+                                                   Scalar tau, int max_iterations) -> Orbit {
   const Eigen::Index n = x0.size();
   const Shooting<System> sh = shooter();
   const auto P = opt_.shooting.periodic_indices(n);
@@ -345,9 +392,9 @@ auto TravellingWaveShooting<System>::solve_in_mode(const Mode& mode, Scalar t0, 
     o.x0 = x;
     o.residual = res;
     if (res <= sh.tolerance_at(x)) return finish(run, o);
-    if (it > opt_.shooting.max_iterations) {
+    if (it > max_iterations) {
       o.status = ShootingStatus::NoConvergence;
-      o.message = "Newton did not converge in " + std::to_string(opt_.shooting.max_iterations) +
+      o.message = "Newton did not converge in " + std::to_string(max_iterations) +
                   " iterations: residual " + detail::format_value(res) + " > tolerance " +
                   detail::format_value(sh.tolerance_at(x));
       return o;
