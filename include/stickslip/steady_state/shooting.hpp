@@ -69,7 +69,8 @@ struct PeriodicOrbit {
   Scalar residual = 0;  ///< max |x_i(T) - x_i(0)| over the periodic components
   int iterations = 0;   ///< orbit runs made (Newton iterations and backtracking trials)
   /// dx_P(T)/dx_P(0) over the periodic components P (in the order of options.periodic); with a
-  /// half-period symmetry (Shooting::half_period_symmetry) the full period's M = H^2.
+  /// half-period symmetry (Shooting::half_period_symmetry) the full period's M, the periodic
+  /// block of (S dx(t0 + T/2)/dx(t0))^2 over the whole state (H^2 when every component is periodic).
   Matrix monodromy;
   /// With a half-period symmetry: H = (S dx(t0 + T/2)/dx(t0))_PP, the matrix of the symmetric
   /// problem's Newton step (H - I); empty without one.
@@ -270,8 +271,11 @@ auto Shooting<System>::make_orbit(const PeriodRun<System>& run, const Mode& mode
   o.iterations = iterations;
   o.monodromy = periodic_block(run.monodromy);
   if (sym_) {
+    // M = H^2 over the whole state, then its periodic block: the components outside it (a
+    // contact coordinate that moves while a damper slides) carry a perturbation from the first
+    // half period into the second, which the square of H's periodic block would drop.
     o.half_period_map = o.monodromy;
-    o.monodromy = o.half_period_map * o.half_period_map;
+    o.monodromy = periodic_block(run.monodromy * run.monodromy);
   }
   if (!detail::all_finite(o.monodromy)) {
     o.status = ShootingStatus::IntegrationFailed;
