@@ -1649,8 +1649,13 @@ void def_continue_orbits(py::module_& m, const char* doc) {
          int max_corrector_iterations, int fast_iterations, double growth, double section_margin,
          int chord_iterations, const py::object& start_mode, const py::object& on_point, int parts,
          const py::object& start, long max_steps, std::optional<Eigen::MatrixXd> outputs, int output_harmonics,
-         const py::object& progress, OrbitIntegrator integrator, bool wrap_section) {
+         const py::object& progress, OrbitIntegrator integrator, bool wrap_section, double max_corrector_distance,
+         const py::object& stop_when) {
         static const std::string where = "continue_orbits";
+        if (!stop_when.is_none() && !PyCallable_Check(stop_when.ptr()))
+          throw std::invalid_argument(where + ": stop_when must be None or a callable stop_when(last, next)");
+        if (!stop_when.is_none() && parts > 1)
+          detail::throw_invalid(where, "stop_when needs parts = 1 (the parts are joined by their own stop rule)", parts);
         if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
           throw std::invalid_argument(where + ": progress must be None or a callable progress(report)");
         if (parts < 1) detail::throw_invalid(where, "parts must be >= 1", parts);
@@ -1672,6 +1677,7 @@ void def_continue_orbits(py::module_& m, const char* doc) {
             std::min(p0, p_end), std::max(p0, p_end), initial_step, min_step, max_step, max_points,
             max_corrector_iterations, fast_iterations, growth, section_margin, chord_iterations, wrap_section);
         co.direction = p_end > p0 ? 1 : -1;
+        co.max_corrector_distance = max_corrector_distance;
         if (!progress.is_none())
           co.progress = [&progress](const ContinuationProgress& pr) {
             py::gil_scoped_acquire gil;
@@ -1705,6 +1711,12 @@ void def_continue_orbits(py::module_& m, const char* doc) {
             cont.start_mode(
                 [&cb](Sys& s, double t, const State& xs, const Mode& prev) { return cb.mode_of(s, t, xs, prev); });
           if (!on_point.is_none()) cont.on_point([&cb](const ContinuationPoint<Sys>& pt) { cb.point(pt); });
+          if (!stop_when.is_none())
+            cont.stop_when([&stop_when](const ContinuationPoint<Sys>& last, const ContinuationPoint<Sys>& next) {
+              py::gil_scoped_acquire gil;
+              return cast_as<bool>(stop_when(to_py(last), to_py(next)),
+                                   "continue_orbits: stop_when(last, next) must return a bool");
+            });
           const auto result = cont.run(md, t0, x, p0);
           one.status = result.status;
           one.message = result.message;
@@ -1752,7 +1764,8 @@ void def_continue_orbits(py::module_& m, const char* doc) {
       py::arg("chord_iterations") = 0, py::arg("start_mode") = py::none(), py::arg("on_point") = py::none(),
       py::arg("parts") = 1, py::arg("start") = py::none(), py::arg("max_steps") = StepperOptions<double>{}.max_steps,
       py::arg("outputs") = py::none(), py::arg("output_harmonics") = 3, py::arg("progress") = py::none(),
-      py::arg("integrator") = OrbitIntegrator::DormandPrince54, py::arg("wrap_section") = true, doc);
+      py::arg("integrator") = OrbitIntegrator::DormandPrince54, py::arg("wrap_section") = true,
+      py::arg("max_corrector_distance") = 0.0, py::arg("stop_when") = py::none(), doc);
 }
 
 template <class Py>
@@ -1943,7 +1956,10 @@ void bind_steady_state(py::module_& m) {
       "PeriodicOrbit.outputs (OrbitSignal, output_harmonics harmonics); progress(report): called after each point "
       "with a ContinuationProgress (CPU seconds so far, an estimate of those left). A failed branch's message names "
       "what stalled the corrector (an event at the period start, a grazing, a discontinuity of the period map) and "
-      "the option that addresses it. " +
+      "the option that addresses it. max_corrector_distance (> 0): a corrected point farther than it times the "
+      "step from its prediction is refused and the step halved (another orbit; default 0: never). stop_when(last, "
+      "next) -> bool (parts = 1): asked after each corrected point; True ends the branch (status Stopped) before "
+      "`next` is added. " +
           std::string(kWrapSectionDoc))
           .c_str());
   def_continue_orbits<PyContactSystem>(

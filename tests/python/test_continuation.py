@@ -92,6 +92,42 @@ def test_amplitude_branch_at_a_fixed_period_scales_linearly():
     assert down.completed and np.all(np.diff(down.parameters) < 0)
 
 
+def test_stop_when_ends_the_branch_where_the_rule_says_and_the_corrector_distance_reaches_cpp():
+    # stop_when(last, next): the branch through the resonance stopped at the first point past
+    # p = 2.5 (the rule sees `next` before it is added); every kept point is the receptance's.
+    at, basis, psi = scene()
+    asked = []
+
+    def past(last, nxt):
+        asked.append((last.parameter, nxt.parameter))
+        return nxt.parameter > 2.5
+
+    branch = ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                                lambda p: 2 * math.pi / (p * UNIT), rtol=1e-9, atol=1e-14,
+                                initial_step=0.05, max_step=0.1, stop_when=past)
+    assert branch.status == ss.ContinuationStatus.Stopped, branch.message
+    p = branch.parameters
+    assert p[-1] <= 2.5 and asked and asked[-1][1] > 2.5 and asked[-1][0] == p[-1]
+    for pt in branch.points:
+        x0, _ = receptance(psi, basis, 1.0, pt.parameter * UNIT)
+        assert np.abs(pt.orbit.x0[:x0.size] - x0).max() < 1e-6 * np.abs(x0).max()
+    # A smooth linear branch: every corrected point lies near its prediction, so a distance
+    # bound of 2 steps changes nothing; a negative one is refused by the C++ options.
+    bounded = ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                                 lambda p: 2 * math.pi / (p * UNIT), rtol=1e-9, atol=1e-14,
+                                 initial_step=0.05, max_step=0.1, max_corrector_distance=2.0)
+    assert bounded.completed, bounded.message
+    with pytest.raises(ValueError, match="max_corrector_distance"):
+        ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                           lambda p: 2 * math.pi / (p * UNIT), max_corrector_distance=-1.0)
+    with pytest.raises(ValueError, match="stop_when"):
+        ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                           lambda p: 2 * math.pi / (p * UNIT), stop_when=3)
+    with pytest.raises(ValueError, match="parts = 1"):
+        ss.continue_orbits(at(1.0, 230.0), lambda system, p: at(1.0, p * UNIT), 2.3, 2.9,
+                           lambda p: 2 * math.pi / (p * UNIT), stop_when=past, parts=2)
+
+
 class Boom(Exception):
     pass
 
