@@ -38,6 +38,7 @@ set_tests_properties("StuckLimit.AllDampersStuckMatchClosedFormOfRitzStuckSystem
 set_tests_properties("Regimes/ExponentialRun.SameEventsTipHistoryAndClosedEnergyAuditAsDopriAtRtol1e12/N0_26dN  # GetParam() = 2.6" PROPERTIES COST 7.2)
 set_tests_properties("ExactLinearStepperExponential.NoStabilityLimitFromTheLinearPart" PROPERTIES COST 7.0)
 set_tests_properties("PerDamperContactPoint.FixedDamperKeepsItsPointWhileTheOtherSlidesAndTheAuditCloses" PROPERTIES COST 6.9)
+set_tests_properties("DiskTravellingWaveSettle.StuckGuessWhereTheDampersSlipConvergesAfterSettling" PROPERTIES COST 6.7)
 set_tests_properties("SplitContinuation.ChordThatMissesTheNextStartJoinsByTheOrbitAtTheCut" PROPERTIES COST 6.6)
 set_tests_properties("DiskEngineOrder.ForcedResponseIsTheModalReceptanceInTheExcitedFamilyOnly" PROPERTIES COST 6.5)
 set_tests_properties("ExactLinearStepper.LinearSceneMatchesTheClosedFormModalSolution" PROPERTIES COST 6.4)
