@@ -165,6 +165,14 @@ inline void set_outputs_and_progress(ShootingOptions<double>& opt, const std::op
     };
 }
 
+/// The MonodromyMethod named `name` ("variational" or "finite_difference"); ValueError naming
+/// `monodromy` otherwise.
+inline MonodromyMethod monodromy_method(const std::string& name, const std::string& where) {
+  if (name == "variational") return MonodromyMethod::Variational;
+  if (name == "finite_difference") return MonodromyMethod::FiniteDifference;
+  throw std::invalid_argument(where + ": monodromy must be 'variational' or 'finite_difference', got '" + name + "'");
+}
+
 /// The shooting options of find_periodic_orbit and continue_orbits. Default periodic set: q, q',
 /// x_d, x_d' (2n + 2D), i.e. not the contact coordinates X (a neutral direction) nor the energy
 /// quadratures (docs/steady_state.md).
@@ -180,10 +188,7 @@ ShootingOptions<double> shooting_options(const Sys& system, const std::optional<
   opt.stepper.max_steps = checked_max_steps(max_steps, where);
   opt.tolerance = tolerance;
   opt.max_iterations = max_iterations;
-  if (monodromy == "finite_difference") opt.monodromy = MonodromyMethod::FiniteDifference;
-  else if (monodromy != "variational")
-    throw std::invalid_argument(where + ": monodromy must be 'variational' or 'finite_difference', got '" + monodromy +
-                                "'");
+  opt.monodromy = monodromy_method(monodromy, where);
   opt.periodic = periodic_set(system, periodic, where);
   return opt;
 }

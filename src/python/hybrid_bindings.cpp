@@ -8,6 +8,8 @@
 // every step (Ctrl-C stops a run with KeyboardInterrupt), and an exception raised by the user's
 // methods ends the call with that exception.
 
+#include "continuation_support.hpp"
+
 #include <stickslip/stickslip.hpp>
 
 #include <pybind11/complex.h>
@@ -189,23 +191,16 @@ struct PyHybridStepper {
       run.message = r.message;
       run.stats = r.stats;
     };
-    switch (options.integrator) {
-      case Integrator::RungeKutta4: {
-        HybridStepper<PyHybridSystem, RungeKutta4> s(system, options.stepper);
-        take(s.integrate(mode, t0, x0, t_end, rec));
-        break;
-      }
-      case Integrator::Rosenbrock23: {
-        HybridStepper<PyHybridSystem, Rosenbrock23> s(system, options.stepper);
-        take(s.integrate(mode, t0, x0, t_end, rec));
-        break;
-      }
-      default: {
-        HybridStepper<PyHybridSystem, DormandPrince54> s(system, options.stepper);
-        take(s.integrate(mode, t0, x0, t_end, rec));
-        break;
-      }
-    }
+    const auto run_with = [&](auto method) {
+      HybridStepper<PyHybridSystem, decltype(method)> stepper(system, options.stepper);
+      take(stepper.integrate(mode, t0, x0, t_end, rec));
+    };
+    if (options.integrator == Integrator::RungeKutta4)
+      run_with(RungeKutta4{});
+    else if (options.integrator == Integrator::Rosenbrock23)
+      run_with(Rosenbrock23{});
+    else
+      run_with(DormandPrince54{});
     return run;
   }
 };
@@ -352,24 +347,20 @@ void bind_hybrid(py::module_& m) {
       "find_periodic_orbit",
       [](PyHybridSystem& system, double period, const Vector& x0, double t0, long mode, bool autonomous,
          std::optional<std::vector<Index>> periodic, const std::string& monodromy, double tolerance,
-         int max_iterations, double rtol, double atol, double max_step, long guard_samples, long max_steps) {
+         int max_iterations, double rtol, double atol, double max_step, long guard_samples, long max_steps,
+         int samples_per_period, std::optional<std::vector<Index>> amplitude_components, double multiplier_tolerance,
+         double fd_step, bool control_sensitivities) {
         static const std::string where = "find_periodic_orbit";
         ShootingOptions<double> opt;
         if (periodic) opt.periodic = *periodic;
-        if (monodromy == "variational")
-          opt.monodromy = MonodromyMethod::Variational;
-        else if (monodromy == "finite_difference")
-          opt.monodromy = MonodromyMethod::FiniteDifference;
-        else
-          throw std::invalid_argument(where + ": monodromy must be \"variational\" or \"finite_difference\", got \"" +
-                                      monodromy + "\"");
+        opt.monodromy = stickslip_python::monodromy_method(monodromy, where);
         opt.tolerance = tolerance;
         opt.max_iterations = max_iterations;
         opt.stepper.rtol = rtol;
         opt.stepper.atol = atol;
-        opt.stepper.max_step = max_step;
-        opt.stepper.guard_samples = guard_samples;
-        opt.stepper.max_steps = max_steps;
+        opt.stepper.max_steps = stickslip_python::checked_max_steps(max_steps, where);
+        stickslip_python::set_orbit_details(opt, samples_per_period, amplitude_components, multiplier_tolerance,
+                                            fd_step, control_sensitivities, max_step, guard_samples);
         opt.interrupt = [] {
           check_signals();
           return false;
@@ -385,12 +376,15 @@ void bind_hybrid(py::module_& m) {
       py::arg("autonomous") = false, py::arg("periodic") = py::none(), py::arg("monodromy") = "variational",
       py::arg("tolerance") = 1e-9, py::arg("max_iterations") = 30, py::arg("rtol") = 1e-10, py::arg("atol") = 1e-12,
       py::arg("max_step") = std::numeric_limits<double>::infinity(), py::arg("guard_samples") = 0,
-      py::arg("max_steps") = StepperOptions<double>{}.max_steps,
+      py::arg("max_steps") = StepperOptions<double>{}.max_steps, py::arg("samples_per_period") = 256,
+      py::arg("amplitude_components") = py::none(), py::arg("multiplier_tolerance") = 1e-6, py::arg("fd_step") = 1e-6,
+      py::arg("control_sensitivities") = true,
       "A HybridSystem's periodic orbit by shooting from the guess (mode, t0, x0) (C++: Shooting<System>): forced "
       "(period T given: x_P(t0 + T) = x_P(t0)) or, with autonomous=True, autonomous (T the guess, t0 = 0, a phase "
       "condition; the orbit's period is found), with the monodromy (variational with saltation matrices, or "
       "finite_difference) and the Floquet multipliers. The runs are dopri5 at rtol / atol (tight by default: the "
       "residual cannot be smaller than the integration error); max_step and guard_samples as in RunOptions (set "
-      "them when a guard can cross and cross back inside one step). Returns a HybridPeriodicOrbit; bad input "
-      "raises ValueError naming it.");
+      "them when a guard can cross and cross back inside one step); samples_per_period, amplitude_components, "
+      "multiplier_tolerance, fd_step and control_sensitivities as for the library's systems. Returns a "
+      "HybridPeriodicOrbit; bad input raises ValueError naming it.");
 }

@@ -283,6 +283,17 @@ def hinge_scene(limit):
     return ss.ContactSystem(f, basis, [hinge], [load]), basis, basis.nodal(mid, ss.Dof.Rz), basis.nodal(tip, ss.Dof.X)
 
 
+def stuck_hinge_response(basis, w, phi, amplitude, W):
+    """The stuck hinge's steady state by numpy: [K - W^2 + i W C, -w; w^T, 0] [Q; L] = [F; 0],
+    q = Im(Q e^{iWt}) and the hinge's moment f = Im(L e^{iWt}); returns (Q, L)."""
+    n = basis.size()
+    A = np.zeros((n + 1, n + 1), complex)
+    A[:n, :n] = np.diag(basis.omega() ** 2 - W ** 2 + 1j * W * basis.damping_coefficients())
+    A[:n, n], A[n, :n] = -w, w
+    sol = np.linalg.solve(A, np.concatenate([amplitude * phi, [0.0]]))
+    return sol[:n], sol[n]
+
+
 def test_contact_of_ones_own_row_stuck_orbit_and_first_slip_are_the_constrained_closed_form():
     """The stuck hinge's steady state is the linear system constrained by w . q = 0, solved here by
     numpy ([K - W^2 + i W C, -w; w^T, 0] [Q; L] = [F; 0], q = Im(Q e^{iWt}), the hinge's moment
@@ -293,11 +304,7 @@ def test_contact_of_ones_own_row_stuck_orbit_and_first_slip_are_the_constrained_
     n = basis.size()
     assert system.num_contacts() == 1 and system.contacts()[0].has_row
     np.testing.assert_array_equal(system.contact_row(0), w)
-    A = np.zeros((n + 1, n + 1), complex)
-    A[:n, :n] = np.diag(basis.omega() ** 2 - W ** 2 + 1j * W * basis.damping_coefficients())
-    A[:n, n], A[n, :n] = -w, w
-    sol = np.linalg.solve(A, np.concatenate([amplitude * phi, [0.0]]))
-    Q, L = sol[:n], sol[n]
+    Q, L = stuck_hinge_response(basis, w, phi, amplitude, W)
     x_stuck = np.concatenate([Q.imag, W * Q.real, np.zeros(system.state_size() - 2 * n)])
 
     stuck, *_ = hinge_scene(1.5 * abs(L))
@@ -359,11 +366,7 @@ def test_contact_system_sections_and_orbit_details_reach_the_constrained_closed_
     W, amplitude = 300.0, 2.0
     system, basis, w, phi = hinge_scene(1.0)
     n = basis.size()
-    A = np.zeros((n + 1, n + 1), complex)
-    A[:n, :n] = np.diag(basis.omega() ** 2 - W ** 2 + 1j * W * basis.damping_coefficients())
-    A[:n, n], A[n, :n] = -w, w
-    sol = np.linalg.solve(A, np.concatenate([amplitude * phi, [0.0]]))
-    Q, L = sol[:n], sol[n]
+    Q, L = stuck_hinge_response(basis, w, phi, amplitude, W)
     stuck, *_ = hinge_scene(1.5 * abs(L))
     x_stuck = np.concatenate([Q.imag, W * Q.real, np.zeros(stuck.state_size() - 2 * n)])
     T = 2 * math.pi / W
